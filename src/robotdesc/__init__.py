@@ -1,0 +1,89 @@
+"""robotdesc: expand xacro without ROS, load URDF into a strict model, lint it.
+
+The public API::
+
+    import robotdesc
+    robot = robotdesc.load("robot.urdf.xacro", args={"prefix": "left_"})
+    expanded = robotdesc.expand("robot.urdf.xacro")      # URDF bytes + where each element came from
+    result = robotdesc.lint("robot.urdf.xacro")          # diagnostics, like `robotdesc lint`
+
+Heavy modules (xacro, lxml, the rules) are imported on first use, so `import robotdesc` is cheap.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Mapping, Sequence
+
+if TYPE_CHECKING:  # pragma: no cover
+    from robotdesc.config import Config
+    from robotdesc.expand.result import Expanded
+    from robotdesc.lint.result import LintResult
+    from robotdesc.model.elements import Robot
+
+__version__ = "0.1.0"
+
+__all__ = ["__version__", "expand", "lint", "load"]
+
+
+def expand(path: str, args: Mapping[str, str] | None = None, *,
+           package_paths: Sequence[str] = (), trusted: bool = False,
+           use_cache: bool = True) -> "Expanded":
+    """Expand a .xacro (or read a plain .urdf) with robotdesc's own package resolution.
+
+    Args:
+        path: the description file.
+        args: xacro arguments (`name:=value` on the command line).
+        package_paths: directories to search for ROS packages first.
+        trusted: lift the sandbox limits (only for your own files).
+        use_cache: reuse a cached expansion of unchanged inputs.
+
+    Raises:
+        robotdesc.errors.InputError: the file could not be expanded.
+    """
+    from robotdesc.expand import ExpandOptions, expand_file
+
+    options = ExpandOptions(package_paths=tuple(package_paths), trusted=trusted,
+                            use_cache=use_cache)
+    return expand_file(path, dict(args or {}), options=options)
+
+
+def load(path: str, args: Mapping[str, str] | None = None,
+         package_paths: Sequence[str] = ()) -> "Robot":
+    """Expand (when xacro) and strictly parse a description into a `Robot`.
+
+    Raises:
+        robotdesc.errors.InputError: the file could not be expanded or parsed.
+    """
+    from robotdesc.model.parse import parse_urdf
+
+    expanded = expand(path, args, package_paths=package_paths)
+    return parse_urdf(expanded.xml, expanded.source, expanded.files)
+
+
+def lint(path: str, args: Mapping[str, str] | None = None, *,
+         select: Sequence[str] | None = None, ignore: Sequence[str] = (),
+         config: "Config | str | None" = None, package_paths: Sequence[str] = (),
+         trusted: bool = False) -> "LintResult":
+    """Lint one description as `robotdesc lint` does.
+
+    Args:
+        path: the description file.
+        args: xacro arguments (override the config's `args`).
+        select: rule selectors replacing the config's `select`.
+        ignore: rule selectors added to the config's `ignore`.
+        config: a `Config`, a config file path, or None to discover one from `path`.
+        package_paths: directories to search for ROS packages first.
+        trusted: lift the sandbox limits (only for your own files).
+
+    Returns:
+        A `LintResult` (`.diagnostics`, `.counts`, `.to_dict()`; renders as a table in Jupyter).
+    """
+    from robotdesc.config import load_config
+    from robotdesc.expand import ExpandOptions
+    from robotdesc.lint.driver import lint_file
+
+    if isinstance(config, str):
+        config = load_config(config)
+    options = ExpandOptions(package_paths=tuple(package_paths), trusted=trusted)
+    return lint_file(path, config, args=args, expand_options=options, select=select,
+                     ignore=ignore)

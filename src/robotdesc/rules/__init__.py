@@ -1,0 +1,1 @@
+"""Lint rules: a registry and one module per family."""

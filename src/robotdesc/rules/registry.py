@@ -1,0 +1,138 @@
+"""The rule registry: every rule registers its code, name, severity, family and options.
+
+A rule is a generator function `check(robot, ctx)` yielding `Finding`s; its docstring is its
+user documentation, in three parts separated by headings "Why is this bad?" and "Example"
+(the first paragraph is the summary). See docs/rules.md (generated from this registry).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import inspect
+from dataclasses import dataclass, field
+from typing import Any, Callable, Iterable, Iterator
+
+from robotdesc.diagnostics import Finding, Severity
+from robotdesc.model.elements import Robot
+from robotdesc.source import Span
+
+
+@dataclass(frozen=True)
+class MacroRecursion:
+    """How deep one macro recursed during expansion.
+
+    Attributes:
+        macro: the macro's name.
+        depth: the deepest nesting of the macro within itself.
+        defined_at: where the macro is defined.
+        called_at: the outermost call site of the deepest chain.
+    """
+
+    macro: str
+    depth: int
+    defined_at: Span
+    called_at: Span | None = None
+
+
+@dataclass(frozen=True)
+class ExpansionFacts:
+    """What the expansion learned that the URDF alone does not show."""
+
+    macro_recursion: tuple[MacroRecursion, ...] = ()
+    files_read: tuple[str, ...] = ()
+    from_xacro: bool = False
+
+
+@dataclass(frozen=True)
+class RuleContext:
+    """What a check sees besides the robot.
+
+    Attributes:
+        options: the rule's options (an instance of its options dataclass, or None).
+        expansion: facts from the xacro expansion (empty for plain URDF).
+    """
+
+    options: Any = None
+    expansion: ExpansionFacts = field(default_factory=ExpansionFacts)
+
+
+CheckFunction = Callable[[Robot, RuleContext], Iterable[Finding]]
+
+
+@dataclass(frozen=True)
+class Rule:
+    """A registered rule.
+
+    Attributes:
+        code: stable code, a family letter and three digits ("J101").
+        name: kebab-case name of the problem ("revolute-without-limit").
+        family: the family ("structure", "joints", ...).
+        severity: default severity.
+        check: the generator function.
+        options: the frozen dataclass type of its options (None when it has none).
+        needs: what it reads besides the model: "expansion", "meshes".
+    """
+
+    code: str
+    name: str
+    family: str
+    severity: Severity
+    check: CheckFunction
+    options: type | None = None
+    needs: frozenset[str] = frozenset()
+
+    @property
+    def doc(self) -> str:
+        return inspect.cleandoc(self.check.__doc__ or "")
+
+    @property
+    def summary(self) -> str:
+        return self.doc.split("\n\n", 1)[0].replace("\n", " ").strip()
+
+    def default_options(self) -> Any:
+        return self.options() if self.options else None
+
+    def option_fields(self) -> list[dataclasses.Field]:
+        return list(dataclasses.fields(self.options)) if self.options else []
+
+
+_REGISTRY: dict[str, Rule] = {}
+
+
+def rule(code: str, name: str, *, family: str, severity: Severity | str = Severity.ERROR,
+         options: type | None = None, needs: Iterable[str] = ()) -> Callable[[CheckFunction], CheckFunction]:
+    """Register `check` under `code`; used as a decorator."""
+
+    def register(check: CheckFunction) -> CheckFunction:
+        if code in _REGISTRY:
+            raise RuntimeError(f"rule code {code} registered twice")
+        if any(r.name == name for r in _REGISTRY.values()):
+            raise RuntimeError(f"rule name {name} registered twice")
+        level = Severity.parse(severity) if isinstance(severity, str) else severity
+        _REGISTRY[code] = Rule(code, name, family, level, check, options, frozenset(needs))
+        return check
+
+    return register
+
+
+def all_rules() -> list[Rule]:
+    """Every registered rule, sorted by code (loads the rule modules on first use)."""
+    _load_rule_modules()
+    return sorted(_REGISTRY.values(), key=lambda r: r.code)
+
+
+def get_rule(code_or_name: str) -> Rule | None:
+    """The rule with this code (case-insensitive) or kebab-case name, or None."""
+    _load_rule_modules()
+    key = code_or_name.strip()
+    found = _REGISTRY.get(key.upper())
+    return found or next((r for r in _REGISTRY.values() if r.name == key), None)
+
+
+def _load_rule_modules() -> None:
+    from robotdesc.rules import catalog  # noqa: F401  (imports every rule module)
+
+
+def run_rule(rule_: Rule, robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Run one rule's check (a thin seam for tests and the lint driver)."""
+    yield from rule_.check(robot, ctx)
