@@ -46,19 +46,33 @@ class Provenance:
 
 #: Private attribute that carries an element's provenance through xacro expansion.
 #: Its value is "FILE:LINE" for the element itself, then ";FILE:LINE" per macro call site,
-#: innermost first, where FILE is an index into the expansion's file table.
+#: innermost first, where FILE is an index into the expansion's file table. A call site
+#: repeated n times in a row (deep recursion) is written once as "FILE:LINE*n".
 PROVENANCE_ATTR = "_rd_src"
 
 
-def encode_provenance(own: tuple[int, int], calls: tuple[tuple[int, int], ...] = ()) -> str:
-    """Encode (file index, line) pairs into the private attribute's value."""
-    return ";".join(f"{f}:{line}" for f, line in (own, *calls))
+def compress_chain(sites: list[str]) -> str:
+    """Join call sites with ";", writing a run of n identical sites as "site*n"."""
+    parts: list[str] = []
+    previous, count = None, 0
+    for site in sites:
+        if site == previous:
+            count += 1
+            continue
+        if previous is not None:
+            parts.append(previous if count == 1 else f"{previous}*{count}")
+        previous, count = site, 1
+    if previous is not None:
+        parts.append(previous if count == 1 else f"{previous}*{count}")
+    return ";".join(parts)
 
 
 def decode_provenance(value: str, files: tuple[str, ...]) -> Provenance:
     """Decode the private attribute's value against the file table."""
-    spans = []
+    spans: list[Span] = []
     for part in value.split(";"):
-        index, _, line = part.partition(":")
-        spans.append(Span(files[int(index)], int(line)))
+        site, _, repeat = part.partition("*")
+        index, _, line = site.partition(":")
+        span = Span(files[int(index)], int(line))
+        spans.extend([span] * (int(repeat) if repeat else 1))
     return Provenance(spans[0], tuple(spans[1:]))

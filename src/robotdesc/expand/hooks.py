@@ -17,7 +17,7 @@ import xml.dom.expatbuilder
 from dataclasses import dataclass, field
 from typing import Callable
 
-from robotdesc.source import PROVENANCE_ATTR
+from robotdesc.source import PROVENANCE_ATTR, compress_chain
 
 _ELEMENT = xml.dom.Node.ELEMENT_NODE
 
@@ -133,7 +133,7 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
             own = node.getAttribute(PROVENANCE_ATTR)
             if own:
                 if state.call_stack and ";" not in own:
-                    chain = ";".join(src for src, _ in reversed(state.call_stack))
+                    chain = compress_chain([src for src, _ in reversed(state.call_stack)])
                     node.setAttribute(PROVENANCE_ATTR, f"{own};{chain}")
                 state.last_src = own.split(";", 1)[0]
         try:
