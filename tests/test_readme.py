@@ -7,7 +7,7 @@ import shlex
 import subprocess
 import sys
 
-from conftest import REPO
+from support import REPO
 
 README = (REPO / "README.md").read_text()
 CI_RUN = (REPO / ".ci" / "run").read_text()

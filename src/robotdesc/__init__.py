@@ -16,8 +16,8 @@ from typing import TYPE_CHECKING, Mapping, Sequence
 
 if TYPE_CHECKING:  # pragma: no cover
     from robotdesc.config import Config
-    from robotdesc.expand.result import Expanded
-    from robotdesc.lint.result import LintResult
+    from robotdesc.expansion.result import Expanded
+    from robotdesc.linting.result import LintResult
     from robotdesc.model.elements import Robot
 
 __version__ = "0.1.0"
@@ -40,7 +40,7 @@ def expand(path: str, args: Mapping[str, str] | None = None, *,
     Raises:
         robotdesc.errors.InputError: the file could not be expanded.
     """
-    from robotdesc.expand import ExpandOptions, expand_file
+    from robotdesc.expansion import ExpandOptions, expand_file
 
     options = ExpandOptions(package_paths=tuple(package_paths), trusted=trusted,
                             use_cache=use_cache)
@@ -79,8 +79,8 @@ def lint(path: str, args: Mapping[str, str] | None = None, *,
         A `LintResult` (`.diagnostics`, `.counts`, `.to_dict()`; renders as a table in Jupyter).
     """
     from robotdesc.config import load_config
-    from robotdesc.expand import ExpandOptions
-    from robotdesc.lint.driver import lint_file
+    from robotdesc.expansion import ExpandOptions
+    from robotdesc.linting.driver import lint_file
 
     if isinstance(config, str):
         config = load_config(config)

@@ -1,0 +1,356 @@
+"""The `robotdesc` command: parse arguments, call the API, render, choose the exit code.
+
+Exit codes: 0 no finding at or above --fail-on, 1 findings, 2 an input could not be checked
+(or the command line is wrong), 3 internal error (a bug), 130 interrupted.
+Heavy modules are imported inside the commands so that `robotdesc --help` starts fast.
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import os
+import sys
+from typing import Any, Sequence
+
+EXIT_OK, EXIT_FINDINGS, EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
+BUG_REPORT_URL = "https://github.com/robotdesc/robotdesc/issues"
+
+log = logging.getLogger("robotdesc.cli")
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; returns the exit code (the console script exits with it)."""
+    parser = build_parser()
+    try:
+        ns = parser.parse_args(argv)
+    except SystemExit as exc:  # --help, --version (0) and usage errors (2)
+        return exc.code if isinstance(exc.code, int) else EXIT_INPUT
+    verbose = getattr(ns, "verbose", 0)
+    _configure_logging(verbose)
+    from robotdesc.errors import InputError
+
+    try:
+        return ns.handler(ns)
+    except KeyboardInterrupt:
+        sys.stderr.write("robotdesc: interrupted\n")
+        return EXIT_INTERRUPTED
+    except InputError as exc:
+        _write_input_error(sys.stderr, exc, None)
+        return EXIT_INPUT
+    except BrokenPipeError:  # e.g. `robotdesc rules | head`
+        _silence_stdout()
+        return EXIT_OK
+    except Exception as exc:  # anything else is a bug: say so, keep the traceback for -v
+        sys.stderr.write(f"robotdesc: internal error: {type(exc).__name__}: {exc}\n"
+                         f"This is a bug in robotdesc; please report it at {BUG_REPORT_URL} "
+                         "with the command you ran"
+                         + (".\n" if verbose else " (run with --verbose for the traceback).\n"))
+        if verbose:
+            import traceback
+
+            traceback.print_exc(file=sys.stderr)
+        return EXIT_INTERNAL
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of every subcommand (cheap: no heavy imports)."""
+    parser = argparse.ArgumentParser(
+        prog="robotdesc",
+        description="Expand xacro without ROS, and lint robot descriptions (URDF/xacro).",
+        epilog="Exit codes: 0 clean, 1 findings, 2 input could not be checked, 3 internal error.")
+    parser.add_argument("--version", action="version", version=f"robotdesc {_version()}")
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+
+    common = argparse.ArgumentParser(add_help=False)
+    common.add_argument("-v", "--verbose", action="count", default=0,
+                        help="log package resolution and progress to stderr (twice: debug)")
+    expansion = argparse.ArgumentParser(add_help=False)
+    expansion.add_argument("--package-path", action="append", default=[], metavar="DIR",
+                           help="a folder holding ROS packages (or one package); repeatable; "
+                                "searched first")
+    expansion.add_argument("--trusted", action="store_true",
+                           help="lift the sandbox limits (only for your own files)")
+    expansion.add_argument("--no-cache", action="store_true",
+                           help="expand again even when no input changed")
+    expansion.add_argument("--config", metavar="FILE",
+                           help="use this robotdesc.toml / pyproject.toml instead of searching")
+
+    lint = commands.add_parser(
+        "lint", parents=[common, expansion], help="lint descriptions",
+        description="Lint URDF/xacro files (directories: every *.urdf and *.urdf.xacro).")
+    lint.add_argument("inputs", nargs="+", metavar="PATH | name:=value",
+                      help="files or directories to lint, and xacro arguments")
+    lint.add_argument("--select", action="append", default=[], metavar="CODES",
+                      help="only these rules (codes, prefixes like J or J1, names; "
+                           "comma-separated, repeatable)")
+    lint.add_argument("--ignore", action="append", default=[], metavar="CODES",
+                      help="skip these rules (added to the config's ignore)")
+    lint.add_argument("--format", choices=("text", "json"), default="text",
+                      help="output format (default: text)")
+    lint.add_argument("--output-file", "-o", metavar="FILE", help="write the report here")
+    lint.add_argument("--fail-on", choices=("error", "warning", "info"),
+                      help="lowest severity that makes the exit code 1 (default: config, "
+                           "else info: any finding)")
+    lint.set_defaults(handler=_run_lint)
+
+    expand = commands.add_parser(
+        "expand", parents=[common, expansion], help="expand a xacro file to URDF",
+        description="Expand a xacro file to URDF without ROS (written to stdout or -o).")
+    expand.add_argument("inputs", nargs="+", metavar="FILE | name:=value",
+                        help="the xacro file, then xacro arguments")
+    expand.add_argument("-o", "--output", metavar="OUT", help="write the URDF to OUT")
+    expand.set_defaults(handler=_run_expand)
+
+    rules = commands.add_parser("rules", parents=[common], help="list the rules",
+                                description="List every rule: code, name, family, severity.")
+    rules.set_defaults(handler=_run_rules)
+
+    rule = commands.add_parser("rule", parents=[common], help="show one rule's documentation",
+                               description="Show a rule's documentation, options and defaults.")
+    rule.add_argument("code", metavar="CODE", help="a rule code (J101) or name")
+    rule.set_defaults(handler=_run_rule)
+    return parser
+
+
+# --- commands -----------------------------------------------------------------------------
+
+
+def _run_lint(ns: argparse.Namespace) -> int:
+    from robotdesc.config import discover_config, load_config
+    from robotdesc.diagnostics import Severity
+    from robotdesc.errors import InputError
+    from robotdesc.linting.driver import lint_file
+    from robotdesc.linting.result import LintFailure
+    from robotdesc.linting.targets import collect_targets
+
+    paths, args = _split_inputs(ns.inputs)
+    select = _selectors(ns.select, "--select") or None
+    ignore = _selectors(ns.ignore, "--ignore")
+    options = _expand_options(ns)
+    explicit = load_config(ns.config) if ns.config else None
+
+    results, failures, failed = [], [], False
+    for raw in paths:
+        try:
+            targets = collect_targets([raw])
+        except InputError as exc:
+            failures.append(LintFailure(raw, exc))
+            continue
+        for target in targets:
+            log.info("linting %s", target)
+            try:
+                config = explicit or discover_config(target)
+                result = lint_file(target, config, args=args, expand_options=options,
+                                   select=select, ignore=ignore)
+            except InputError as exc:
+                failures.append(LintFailure(target, exc))
+                continue
+            results.append(result)
+            fail_on = Severity.parse(ns.fail_on) if ns.fail_on else config.fail_on
+            failed = failed or result.failed(fail_on)
+
+    for failure in failures:
+        _write_input_error(sys.stderr, failure.error, failure.target)
+    _write_report(ns, results, failures)
+    return EXIT_INPUT if failures else EXIT_FINDINGS if failed else EXIT_OK
+
+
+def _run_expand(ns: argparse.Namespace) -> int:
+    from robotdesc.config import discover_config, load_config
+    from robotdesc.errors import UsageError
+    from robotdesc.expansion import expand_file
+    from robotdesc.model.parse import strip_provenance
+    from robotdesc.source import Span
+
+    paths, args = _split_inputs(ns.inputs)
+    if len(paths) != 1:
+        raise UsageError(f"expand takes one file, got {len(paths)}: {' '.join(paths) or '-'}")
+    source = paths[0]
+    config = load_config(ns.config) if ns.config else discover_config(source)
+    options = _expand_options(ns, config.packages)
+    if ns.output and _same_file(ns.output, source):
+        raise UsageError("refusing to overwrite the input file; choose another -o", Span(source))
+    expanded = expand_file(source, {**dict(config.args), **args}, options=options)
+    urdf = strip_provenance(expanded.xml)
+    urdf = urdf if urdf.endswith(b"\n") else urdf + b"\n"
+    if not ns.output:
+        sys.stdout.buffer.write(urdf)
+        sys.stdout.flush()
+        return EXIT_OK
+    if any(_same_file(ns.output, read) for read in expanded.files_read):
+        raise UsageError("refusing to overwrite a file the expansion read; choose another -o",
+                         Span(ns.output))
+    _write_atomically(ns.output, urdf)
+    log.info("wrote %s (%d bytes)", ns.output, len(urdf))
+    return EXIT_OK
+
+
+def _run_rules(ns: argparse.Namespace) -> int:
+    from robotdesc.rules.registry import all_rules
+
+    rows = [(r.code, r.name, r.family, str(r.severity), r.summary) for r in all_rules()]
+    header = ("CODE", "NAME", "FAMILY", "SEVERITY", "SUMMARY")
+    widths = [max(len(row[i]) for row in (header, *rows)) for i in range(4)]
+    for row in (header, *rows):
+        cells = [cell.ljust(width) for cell, width in zip(row, widths)]
+        sys.stdout.write("  ".join([*cells, row[4]]).rstrip() + "\n")
+    return EXIT_OK
+
+
+def _run_rule(ns: argparse.Namespace) -> int:
+    from robotdesc.errors import UsageError
+    from robotdesc.rules.registry import get_rule
+
+    found = get_rule(ns.code)
+    if found is None:
+        raise UsageError(f"unknown rule '{ns.code}' (see `robotdesc rules`)")
+    sys.stdout.write(rule_help(found))
+    return EXIT_OK
+
+
+def rule_help(rule: Any) -> str:
+    """A rule's documentation as `robotdesc rule CODE` prints it."""
+    lines = [f"{rule.code} {rule.name}", "",
+             f"Family: {rule.family}", f"Default severity: {rule.severity}"]
+    if rule.needs:
+        lines.append(f"Needs: {', '.join(sorted(rule.needs))}")
+    lines += ["", rule.doc or rule.summary, ""]
+    fields = rule.option_fields()
+    if fields:
+        defaults = rule.default_options()
+        lines.append(f"Options ([tool.robotdesc.rules.{rule.code}]):")
+        for field in fields:
+            kind = field.type if isinstance(field.type, str) else getattr(
+                field.type, "__name__", str(field.type))
+            lines.append(f"  {field.name} ({kind}) = {getattr(defaults, field.name)!r}")
+        lines.append("")
+    else:
+        lines += ["Options: none", ""]
+    return "\n".join(lines)
+
+
+# --- helpers ------------------------------------------------------------------------------
+
+
+def _split_inputs(inputs: Sequence[str]) -> tuple[list[str], dict[str, str]]:
+    """Separate paths from `name:=value` xacro arguments."""
+    from robotdesc.errors import UsageError
+
+    paths, args = [], {}
+    for item in inputs:
+        name, sep, value = item.partition(":=")
+        if sep and name and not os.path.exists(item):
+            if not name.replace("_", "").replace("-", "").isalnum():
+                raise UsageError(f"bad xacro argument '{item}' (expected name:=value)")
+            args[name] = value
+        else:
+            paths.append(item)
+    if not paths:
+        raise UsageError("no file given")
+    return paths, args
+
+
+def _selectors(values: Sequence[str], flag: str) -> list[str]:
+    """Comma-separated selectors from repeatable flags, checked against the registry."""
+    from robotdesc.errors import UsageError
+    from robotdesc.linting.select import unknown_selectors
+    from robotdesc.rules.registry import all_rules
+
+    selectors = [part.strip() for value in values for part in value.split(",") if part.strip()]
+    if selectors:
+        unknown = unknown_selectors(selectors, all_rules())
+        if unknown:
+            raise UsageError(f"{flag}: no rule matches '{unknown[0]}' (see `robotdesc rules`)")
+    return selectors
+
+
+def _expand_options(ns: argparse.Namespace, package_map: Sequence[tuple[str, str]] = ()) -> Any:
+    from robotdesc.expansion import ExpandOptions
+
+    return ExpandOptions(package_paths=tuple(os.path.abspath(p) for p in ns.package_path),
+                         package_map=tuple(package_map), trusted=ns.trusted,
+                         use_cache=not ns.no_cache)
+
+
+def _write_report(ns: argparse.Namespace, results: list, failures: list) -> None:
+    if ns.format == "json":
+        from robotdesc.report.json import render_json
+
+        text = render_json(results, failures)
+        if ns.output_file:
+            _write_atomically(ns.output_file, text.encode("utf-8"))
+        else:
+            sys.stdout.write(text)
+        return
+    from robotdesc.report.text import render_text, write_text
+
+    if ns.output_file:
+        _write_atomically(ns.output_file, render_text(results, failures).encode("utf-8"))
+    else:
+        write_text(sys.stdout, results, failures, colour=_use_colour(sys.stdout))
+
+
+def _write_input_error(stream: Any, error: Any, target: str | None) -> None:
+    """`path:line:col: error: message`, the source line and the macro call chain."""
+    from robotdesc.linting.result import LintFailure
+    from robotdesc.report.text import render_failure
+
+    stream.write(render_failure(LintFailure(target or "robotdesc", error)))
+
+
+def _write_atomically(path: str, data: bytes) -> None:
+    """Write `data` to `path` through a temporary file in the same folder and a rename."""
+    import tempfile
+
+    from robotdesc.errors import InputError
+    from robotdesc.source import Span
+
+    folder = os.path.dirname(os.path.abspath(path))
+    try:
+        handle, temporary = tempfile.mkstemp(prefix=".robotdesc-", dir=folder)
+    except OSError as exc:
+        raise InputError(f"cannot write: {exc.strerror}", Span(path)) from None
+    try:
+        with os.fdopen(handle, "wb") as out:
+            out.write(data)
+        os.replace(temporary, path)
+    except OSError as exc:
+        raise InputError(f"cannot write: {exc.strerror}", Span(path)) from None
+    finally:
+        if os.path.exists(temporary):
+            os.unlink(temporary)
+
+
+def _same_file(a: str, b: str) -> bool:
+    return os.path.realpath(a) == os.path.realpath(b)
+
+
+def _use_colour(stream: Any) -> bool:
+    if os.environ.get("NO_COLOR"):
+        return False
+    if os.environ.get("FORCE_COLOR"):
+        return True
+    return bool(getattr(stream, "isatty", lambda: False)())
+
+
+def _configure_logging(verbose: int) -> None:
+    level = logging.WARNING if not verbose else logging.INFO if verbose == 1 else logging.DEBUG
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(logging.Formatter("robotdesc: %(message)s"))
+    root = logging.getLogger("robotdesc")
+    root.handlers[:] = [handler]
+    root.setLevel(level)
+    root.propagate = False
+
+
+def _silence_stdout() -> None:
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+
+
+def _version() -> str:
+    from robotdesc import __version__
+
+    return __version__
+

@@ -1,0 +1,130 @@
+"""Expansion: xacro (or a plain URDF) to a URDF document with source provenance.
+
+`expand_file` is the one entry point. Xacro runs in an isolated worker process (see
+`robotdesc.expansion.worker`); results are cached by the content of every file read.
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Mapping
+
+from robotdesc import errors
+from robotdesc.expansion.result import Expanded, ResolvedPackage
+from robotdesc.source import Span
+
+__all__ = ["ExpandOptions", "Expanded", "ResolvedPackage", "expand_file", "is_xacro"]
+
+log = logging.getLogger(__name__)
+
+#: Environment variables a xacro file may read in safe mode (extend with ExpandOptions.env_allowlist).
+DEFAULT_ENV_ALLOWLIST = ("ROS_DISTRO", "ROS_VERSION", "ROS_PYTHON_VERSION")
+#: Largest plain URDF read (bytes).
+MAX_URDF_BYTES = 256 * 1024 * 1024
+
+
+@dataclass(frozen=True)
+class ExpandOptions:
+    """How to expand.
+
+    Attributes:
+        package_paths: folders holding packages (or a package), searched first.
+        package_map: explicit (package name, folder) pairs (from config).
+        trusted: lift the sandbox (full environment, any file, no audit guard) for own files.
+        timeout_s: wall-clock limit of the worker (s).
+        memory_mb: memory limit of the worker (MiB).
+        max_macro_depth: nested macro calls allowed before the expansion is stopped.
+        env_allowlist: environment variables visible to `$(env)`/`$(optenv)` in safe mode,
+            in addition to DEFAULT_ENV_ALLOWLIST.
+        use_cache: reuse a cached expansion when no input changed.
+        cache_dir: the cache root (default: robotdesc.cache_dir.default_cache_dir()).
+    """
+
+    package_paths: tuple[str, ...] = ()
+    package_map: tuple[tuple[str, str], ...] = ()
+    trusted: bool = False
+    timeout_s: float = 60.0
+    memory_mb: int = 2048
+    max_macro_depth: int = 2000
+    env_allowlist: tuple[str, ...] = ()
+    use_cache: bool = True
+    cache_dir: str | None = None
+
+
+def is_xacro(path: Path, head: bytes) -> bool:
+    """True when the file needs xacro: a .xacro name or xacro tags in its text."""
+    return ".xacro" in path.name or b"<xacro:" in head
+
+
+def _read_checked(path: Path) -> bytes:
+    if not path.exists():
+        raise errors.InputError("no such file", Span(str(path)))
+    if not path.is_file():
+        raise errors.InputError("not a regular file", Span(str(path)))
+    if path.stat().st_size > MAX_URDF_BYTES:
+        raise errors.LimitExceeded(f"file larger than {MAX_URDF_BYTES} bytes", Span(str(path)))
+    try:
+        return path.read_bytes()
+    except OSError as exc:
+        raise errors.InputError(f"cannot read: {exc.strerror}", Span(str(path))) from exc
+
+
+def expand_file(path: str | Path, args: Mapping[str, str] | None = None, *,
+                options: ExpandOptions | None = None) -> Expanded:
+    """Expand a .xacro (in the worker) or read a plain .urdf.
+
+    Args:
+        path: the top-level description.
+        args: xacro arguments (`name:=value` on the command line).
+        options: resolution, sandbox, limits and cache settings.
+
+    Returns:
+        The expanded document with provenance (see `Expanded`).
+
+    Raises:
+        InputError: the file cannot be expanded; its subclasses say why and where.
+    """
+    import os
+
+    from robotdesc.expansion import cache
+    from robotdesc.expansion.packages import PackageResolverConfig
+    from robotdesc.expansion.runner import WorkerLimits, run_worker
+
+    options = options or ExpandOptions()
+    args = dict(args or {})
+    path = Path(path).absolute()
+    data = _read_checked(path)
+    if not is_xacro(path, data):
+        return Expanded(source=str(path), xml=data, files=(), files_read=(str(path),))
+    resolver = PackageResolverConfig.from_environment(str(path), options.package_paths,
+                                                      options.package_map)
+    names = DEFAULT_ENV_ALLOWLIST + options.env_allowlist
+    env = dict(os.environ) if options.trusted else {n: os.environ[n] for n in names if n in os.environ}
+    limits = WorkerLimits(options.timeout_s, options.memory_mb, options.max_macro_depth)
+    cache_root = Path(options.cache_dir) if options.cache_dir else None
+    key = None
+    if options.use_cache:
+        from robotdesc.cache_dir import default_cache_dir
+
+        cache_root = cache_root or default_cache_dir()
+        key = cache.cache_key({"file": str(path), "args": sorted(args.items()),
+                               "resolver": resolver.__dict__, "trusted": options.trusted,
+                               "env": sorted(env.items()), "max_macro_depth": options.max_macro_depth})
+        hit = cache.load(cache_root, key)
+        if hit is not None:
+            log.debug("expansion cache hit for %s", path)
+            _log_packages(hit)
+            return hit
+    expanded = run_worker(path, args, resolver, trusted=options.trusted, env=env, limits=limits,
+                          extra_roots=tuple(p for p in options.package_paths))
+    _log_packages(expanded)
+    if key is not None and cache_root is not None:
+        cache.store(cache_root, key, expanded)
+    return expanded
+
+
+def _log_packages(expanded: Expanded) -> None:
+    for package in expanded.packages:
+        log.info("package %s -> %s (found via %s)", package.name, package.path, package.source)

@@ -1,0 +1,231 @@
+"""Hooks into the xacro package: source lines, macro call chains, package resolution.
+
+Only the worker process installs these (they patch the `xacro` module's globals).
+
+How provenance works: every element gets a private attribute (`PROVENANCE_ATTR`) with its
+file index and line when a file is parsed. The attribute is cloned with macro bodies, so an
+element expanded from a macro still knows its line in the macro body; while a macro is being
+expanded, the current chain of call sites is appended to the attribute of every element
+evaluated. Macro call tags and xacro directives lose the attribute (xacro would reject it).
+"""
+
+from __future__ import annotations
+
+import os
+import xml.dom
+import xml.dom.expatbuilder
+from dataclasses import dataclass, field
+from typing import Callable
+
+from robotdesc.source import PROVENANCE_ATTR, compress_chain
+
+_ELEMENT = xml.dom.Node.ELEMENT_NODE
+
+
+class DoctypeRefused(Exception):
+    """A DOCTYPE was found (entities can expand without bound or read local files)."""
+
+    def __init__(self, path: str, line: int, col: int) -> None:
+        super().__init__("DOCTYPE declarations are not allowed (entity expansion is refused)")
+        self.path, self.line, self.col = path, line, col
+
+
+class IncludeCycle(Exception):
+    """A file includes itself, directly or through other files."""
+
+
+class MacroTooDeep(Exception):
+    """Macro calls nested beyond the configured limit."""
+
+
+@dataclass
+class ExpansionState:
+    """What the hooks learn while xacro runs.
+
+    Attributes:
+        files: the file table (index -> absolute path).
+        call_stack: the active macro call sites, outermost first, as (file, line) and macro name.
+        last_src: the provenance value of the node most recently touched (for error locations).
+        error_src: the location captured when an error first passed through a hook.
+        recursion: per macro, (max depth, definition src, outermost call src).
+    """
+
+    max_macro_depth: int
+    files: list[str] = field(default_factory=list)
+    call_stack: list[tuple[str, str]] = field(default_factory=list)
+    last_src: str = ""
+    error_src: tuple[str, tuple[str, ...]] | None = None
+    recursion: dict[str, tuple[int, str, str]] = field(default_factory=dict)
+    _depth: dict[str, int] = field(default_factory=dict)
+
+    def file_index(self, path: str) -> int:
+        if path not in self.files:
+            self.files.append(path)
+        return self.files.index(path)
+
+    def capture_error(self) -> None:
+        if self.error_src is None:
+            chain = tuple(src for src, _ in reversed(self.call_stack))
+            self.error_src = (self.last_src, chain)
+
+
+def _make_builder(state: ExpansionState, path: str) -> xml.dom.expatbuilder.ExpatBuilderNS:
+    index = state.file_index(path)
+
+    class TaggingBuilder(xml.dom.expatbuilder.ExpatBuilderNS):
+        def start_element_handler(self, name, attributes):  # noqa: D401 (expat callback)
+            super().start_element_handler(name, attributes)
+            self.curNode.setAttribute(PROVENANCE_ATTR, f"{index}:{self._parser.CurrentLineNumber}")
+
+        def start_doctype_decl_handler(self, *args):
+            raise DoctypeRefused(path, self._parser.CurrentLineNumber,
+                                 self._parser.CurrentColumnNumber + 1)
+
+        def entity_decl_handler(self, *args):
+            raise DoctypeRefused(path, self._parser.CurrentLineNumber,
+                                 self._parser.CurrentColumnNumber + 1)
+
+    return TaggingBuilder()
+
+
+def install(state: ExpansionState, find_package: Callable[[str], str],
+            check_file: Callable[[str], None]) -> None:
+    """Patch the xacro module so that expansion records provenance into `state`.
+
+    Args:
+        state: collects files, call chains, recursion depths and error locations.
+        find_package: package name -> its folder; raises when unknown.
+        check_file: called with every file xacro is about to parse; raises to refuse it.
+    """
+    import xacro
+    import xacro.substitution_args as subst
+
+    original_eval_all = xacro.eval_all
+    original_macro_call = xacro.handle_macro_call
+    original_check_attrs = xacro.check_attrs
+    original_abs_filename = xacro.abs_filename_spec
+
+    def parse(inp, filename=None):
+        if inp is not None:
+            return inp if not isinstance(inp, (str, bytes)) else _parse_text(inp)
+        path = os.path.abspath(os.path.join(xacro.root_dir, filename))
+        check_file(path)
+        including = [os.path.abspath(f) for f in (xacro.filestack or [])[:-1] if f]
+        if path in including:
+            cycle = " -> ".join(os.path.basename(f) for f in including[including.index(path):] + [path])
+            raise IncludeCycle(f"include cycle: {cycle}")
+        try:
+            with open(path, "rb") as stream:
+                return _make_builder(state, path).parseFile(stream)
+        except OSError as exc:
+            xacro.filestack.pop()
+            raise xacro.XacroException(f"{exc.strerror}: {filename}", exc=exc)
+        except xml.parsers.expat.ExpatError as exc:
+            exc.robotdesc_path = path
+            raise
+
+    def _parse_text(text):
+        return _make_builder(state, "<string>").parseString(text)
+
+    def eval_all(node, macros, symbols):
+        previous = state.last_src
+        if node.nodeType == _ELEMENT:
+            own = node.getAttribute(PROVENANCE_ATTR)
+            if own:
+                if state.call_stack and ";" not in own:
+                    chain = compress_chain([src for src, _ in reversed(state.call_stack)])
+                    node.setAttribute(PROVENANCE_ATTR, f"{own};{chain}")
+                state.last_src = own.split(";", 1)[0]
+        try:
+            original_eval_all(node, macros, symbols)
+        except BaseException:
+            state.capture_error()
+            raise
+        state.last_src = previous
+
+    def handle_macro_call(node, macros, symbols):
+        if node.tagName == "xacro:call" or not node.tagName.startswith("xacro:"):
+            return original_macro_call(node, macros, symbols)
+        own = node.getAttribute(PROVENANCE_ATTR).split(";", 1)[0]
+        if node.hasAttribute(PROVENANCE_ATTR):
+            node.removeAttribute(PROVENANCE_ATTR)
+        name = node.tagName[len("xacro:"):]
+        state.last_src = own or state.last_src
+        _enter_macro(name, own, macros, symbols)
+        try:
+            return original_macro_call(node, macros, symbols)
+        except BaseException:
+            state.capture_error()
+            raise
+        finally:
+            state.call_stack.pop()
+            state._depth[name] -= 1
+
+    def _enter_macro(name, own, macros, symbols):
+        if len(state.call_stack) >= state.max_macro_depth:
+            state.capture_error()
+            raise MacroTooDeep(
+                f"macro calls nested deeper than {state.max_macro_depth} levels "
+                f"(macro '{name}'; infinite recursion?)")
+        state.call_stack.append((own, name))
+        depth = state._depth.get(name, 0) + 1
+        state._depth[name] = depth
+        best = state.recursion.get(name)
+        if depth > 1 and (best is None or depth > best[0]):
+            try:
+                _, _, macro = xacro.resolve_macro(name, macros, symbols)
+                defined = macro.body.getAttribute(PROVENANCE_ATTR).split(";", 1)[0]
+            except (KeyError, AttributeError):
+                defined = ""
+            outermost = next(src for src, called in state.call_stack if called == name)
+            state.recursion[name] = (depth, defined, outermost)
+
+    def check_attrs(tag, required, optional):
+        src = tag.getAttribute(PROVENANCE_ATTR)
+        state.last_src = src.split(";", 1)[0] or state.last_src
+        if not src:
+            return original_check_attrs(tag, required, optional)
+        tag.removeAttribute(PROVENANCE_ATTR)
+        try:
+            return original_check_attrs(tag, required, optional)
+        finally:
+            if tag.tagName == "xacro:macro":  # keep the definition line with the macro body
+                tag.setAttribute(PROVENANCE_ATTR, src)
+
+    def abs_filename_spec(filename_spec):
+        if isinstance(filename_spec, str) and filename_spec.startswith("package://"):
+            from robotdesc.expansion.packages import split_package_uri
+
+            package, rel, _ = split_package_uri(filename_spec)
+            return os.path.join(find_package(package), rel)
+        return original_abs_filename(filename_spec)
+
+    def eval_find(package):
+        return find_package(package)
+
+    xacro.parse = parse
+    xacro.eval_all = eval_all
+    xacro.handle_macro_call = handle_macro_call
+    xacro.check_attrs = check_attrs
+    xacro.abs_filename_spec = abs_filename_spec
+    subst._eval_find = eval_find
+    subst._eval_dict["find"] = eval_find
+
+
+def install_environment(env: dict[str, str], safe: bool) -> None:
+    """Make `$(env)`/`$(optenv)` see only `env` (the allowlisted variables in safe mode)."""
+    import xacro.substitution_args as subst
+
+    def eval_env(name):
+        if name in env:
+            return env[name]
+        hint = " (not in the safe-mode allowlist; add it with --env NAME or use --trusted)" if safe else ""
+        raise subst.SubstitutionException(f"environment variable {name} is not set{hint}")
+
+    def eval_optenv(name, default=""):
+        return env.get(name, default)
+
+    subst._eval_env = eval_env
+    subst._eval_optenv = eval_optenv
+    subst._eval_dict["env"] = eval_env
+    subst._eval_dict["optenv"] = eval_optenv

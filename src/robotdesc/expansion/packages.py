@@ -1,0 +1,214 @@
+"""Find ROS packages without ROS: a chain of resolvers, first hit wins.
+
+The chain, in order: explicit `--package-path` directories and the config map
+(`pkg = "dir"`), the package that encloses the file (walk up to package.xml), sibling
+packages in the same workspace, `ROS_PACKAGE_PATH`, `AMENT_PREFIX_PATH` (share/<pkg>).
+"""
+
+from __future__ import annotations
+
+import functools
+import logging
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+from robotdesc.expansion.result import ResolvedPackage
+
+log = logging.getLogger(__name__)
+
+#: Directories never searched for packages (build products, VCS, virtual environments).
+_SKIP_DIRS = frozenset({"build", "install", "log", "node_modules", "__pycache__", "site-packages"})
+#: How deep below a search root package.xml files are looked for.
+_MAX_SEARCH_DEPTH = 6
+_WORKSPACE_MARKERS = (".git", ".hg", ".catkin_workspace", ".colcon", "colcon.meta", ".catkin_tools")
+
+
+@functools.lru_cache(maxsize=4096)
+def read_package_name(package_xml: str) -> str | None:
+    """The `<name>` of a package.xml, or None when it cannot be read.
+
+    Parsed strictly (no DTD, no entities, no network).
+    """
+    from lxml import etree
+
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
+                             huge_tree=False, recover=False)
+    try:
+        root = etree.parse(package_xml, parser).getroot()
+    except (OSError, etree.XMLSyntaxError) as exc:
+        log.warning("%s: cannot read package manifest: %s", package_xml, exc)
+        return None
+    name = root.findtext("name")
+    return name.strip() if name else None
+
+
+def enclosing_package(path: str | Path) -> tuple[str, Path] | None:
+    """The package that contains `path` (walking up to the nearest package.xml)."""
+    here = Path(path).resolve()
+    for folder in ([here] if here.is_dir() else []) + list(here.parents):
+        manifest = folder / "package.xml"
+        if manifest.is_file():
+            name = read_package_name(str(manifest))
+            return (name, folder) if name else None
+    return None
+
+
+def workspace_root(package_dir: Path) -> Path:
+    """The workspace that holds a package: the nearest ancestor that looks like one.
+
+    A workspace root holds a VCS or colcon/catkin marker, or is the parent of a `src/` folder
+    holding the package. Falls back to the package's parent folder.
+    """
+    for folder in package_dir.parents:
+        if folder.name == "src":
+            return folder.parent
+        if any((folder / marker).exists() for marker in _WORKSPACE_MARKERS):
+            return folder
+    return package_dir.parent
+
+
+def crawl_packages(root: Path, max_depth: int = _MAX_SEARCH_DEPTH) -> dict[str, Path]:
+    """Every package under `root` (not descending into a package), name -> folder.
+
+    The first folder found (sorted walk) wins when two packages share a name.
+    """
+    found: dict[str, Path] = {}
+
+    def visit(folder: Path, depth: int) -> None:
+        manifest = folder / "package.xml"
+        if manifest.is_file():
+            name = read_package_name(str(manifest))
+            if name and name not in found:
+                found[name] = folder
+            return
+        if depth >= max_depth or (folder / "CATKIN_IGNORE").exists() or (folder / "COLCON_IGNORE").exists():
+            return
+        try:
+            children = sorted(p for p in folder.iterdir() if p.is_dir())
+        except OSError:
+            return
+        for child in children:
+            if child.name.startswith(".") or child.name in _SKIP_DIRS:
+                continue
+            visit(child, depth + 1)
+
+    if root.is_dir():
+        visit(root, 0)
+    return found
+
+
+@dataclass(frozen=True)
+class PackageResolverConfig:
+    """Everything the resolver chain depends on (picklable: sent to the xacro worker).
+
+    Attributes:
+        origin: the file being expanded (its enclosing package and workspace are searched).
+        package_paths: `--package-path` folders: a package, or a folder holding packages.
+        package_map: explicit (name, folder) pairs from the config file.
+        ros_package_path: the value of ROS_PACKAGE_PATH ("" to ignore it).
+        ament_prefix_path: the value of AMENT_PREFIX_PATH ("" to ignore it).
+    """
+
+    origin: str
+    package_paths: tuple[str, ...] = ()
+    package_map: tuple[tuple[str, str], ...] = ()
+    ros_package_path: str = ""
+    ament_prefix_path: str = ""
+
+    @classmethod
+    def from_environment(cls, origin: str, package_paths: tuple[str, ...] = (),
+                         package_map: tuple[tuple[str, str], ...] = ()) -> "PackageResolverConfig":
+        return cls(str(Path(origin).resolve()), tuple(str(Path(p).resolve()) for p in package_paths),
+                   tuple((name, str(Path(folder).resolve())) for name, folder in package_map),
+                   os.environ.get("ROS_PACKAGE_PATH", ""), os.environ.get("AMENT_PREFIX_PATH", ""))
+
+
+class PackageResolver:
+    """The resolver chain. `find(name)` returns the first hit and remembers it."""
+
+    def __init__(self, config: PackageResolverConfig) -> None:
+        self.config = config
+        self._resolved: dict[str, ResolvedPackage] = {}
+        self._explicit: dict[str, Path] | None = None
+        self._workspace: dict[str, Path] | None = None
+        self._ros_path: dict[str, Path] | None = None
+        self.enclosing = enclosing_package(config.origin)
+
+    @property
+    def resolved(self) -> tuple[ResolvedPackage, ...]:
+        """The packages found so far, in the order they were first asked for."""
+        return tuple(self._resolved.values())
+
+    def searched(self) -> tuple[str, ...]:
+        """A short description of where the chain looks, for error messages."""
+        places = [f"--package-path {p}" for p in self.config.package_paths]
+        places += [f"config {name}={folder}" for name, folder in self.config.package_map]
+        if self.enclosing:
+            places.append(f"enclosing package {self.enclosing[0]}")
+            places.append(f"workspace {workspace_root(self.enclosing[1])}")
+        if self.config.ros_package_path:
+            places.append("ROS_PACKAGE_PATH")
+        if self.config.ament_prefix_path:
+            places.append("AMENT_PREFIX_PATH")
+        return tuple(places)
+
+    def find(self, name: str) -> ResolvedPackage | None:
+        """The package called `name`, or None when no resolver knows it."""
+        if name in self._resolved:
+            return self._resolved[name]
+        hit = self._search(name)
+        if hit is not None:
+            self._resolved[name] = hit
+            log.info("package %s -> %s (from %s)", name, hit.path, hit.source)
+        return hit
+
+    def _search(self, name: str) -> ResolvedPackage | None:
+        explicit = self._explicit_packages()
+        if name in explicit:
+            return ResolvedPackage(name, str(explicit[name][0]), explicit[name][1])
+        if self.enclosing and self.enclosing[0] == name:
+            return ResolvedPackage(name, str(self.enclosing[1]), "enclosing")
+        if self.enclosing:
+            if self._workspace is None:
+                self._workspace = crawl_packages(workspace_root(self.enclosing[1]))
+            if name in self._workspace:
+                return ResolvedPackage(name, str(self._workspace[name]), "workspace")
+        if self.config.ros_package_path:
+            if self._ros_path is None:
+                self._ros_path = {}
+                for entry in self.config.ros_package_path.split(os.pathsep):
+                    for pkg, folder in crawl_packages(Path(entry)).items() if entry else ():
+                        self._ros_path.setdefault(pkg, folder)
+            if name in self._ros_path:
+                return ResolvedPackage(name, str(self._ros_path[name]), "ROS_PACKAGE_PATH")
+        for prefix in filter(None, self.config.ament_prefix_path.split(os.pathsep)):
+            share = Path(prefix) / "share" / name
+            if (share / "package.xml").is_file() or share.is_dir():
+                return ResolvedPackage(name, str(share.resolve()), "AMENT_PREFIX_PATH")
+        return None
+
+    def _explicit_packages(self) -> dict[str, tuple[Path, str]]:
+        if self._explicit is None:
+            self._explicit = {}
+            for folder in self.config.package_paths:
+                for pkg, path in crawl_packages(Path(folder)).items():
+                    self._explicit.setdefault(pkg, (path, "--package-path"))
+            for pkg, folder in self.config.package_map:
+                self._explicit.setdefault(pkg, (Path(folder), "config"))
+        return self._explicit
+
+
+def split_package_uri(uri: str) -> tuple[str, str, bool] | None:
+    """Split `package://pkg/rel/path` into (pkg, rel/path, three_slashes).
+
+    Returns None when `uri` is not a package URI. `package:///pkg/...` (three slashes, a common
+    slip) is accepted and flagged.
+    """
+    if not uri.startswith("package://"):
+        return None
+    rest = uri[len("package://"):]
+    three = rest.startswith("/")
+    rest = rest.lstrip("/")
+    pkg, _, rel = rest.partition("/")
+    return pkg, rel, three

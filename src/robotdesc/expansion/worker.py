@@ -1,0 +1,187 @@
+"""The xacro worker: runs in its own process, reads a job (JSON) on stdin, writes a result.
+
+Started by `robotdesc.expansion.runner`; never imported by the parent process (it patches xacro).
+The result is one JSON object on stdout: {"ok": true, ...} or {"ok": false, "kind", "message",
+"span", "call_stack"}. Everything xacro prints goes to stderr.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+import threading
+import xml.parsers.expat
+
+from robotdesc.expansion import hooks, sandbox
+
+#: Stack for the expansion thread: xacro recurses once per nested element and macro call.
+_THREAD_STACK_BYTES = 256 * 1024 * 1024
+_RECURSION_LIMIT = 200_000
+
+
+def _span(src: str, files: list[str]) -> list | None:
+    if not src:
+        return None
+    index, _, line = src.partition(":")
+    return [files[int(index)], int(line), 0]
+
+
+def _failure(kind: str, message: str, span=None, chain=()) -> dict:
+    return {"ok": False, "kind": kind, "message": message, "span": span, "call_stack": list(chain)}
+
+
+def _root_cause(exc: BaseException) -> BaseException:
+    """Walk xacro's wrappers (`exc.exc`) and Python's chaining down to the first cause."""
+    seen = set()
+    while id(exc) not in seen:
+        seen.add(id(exc))
+        inner = getattr(exc, "exc", None) or exc.__cause__ or exc.__context__
+        if not isinstance(inner, BaseException):
+            break
+        exc = inner
+    return exc
+
+
+def _classify(exc: BaseException) -> str:
+    cause = _root_cause(exc)
+    for candidate in (exc, cause):
+        if isinstance(candidate, sandbox.Forbidden):
+            return "SandboxViolation"
+        if isinstance(candidate, hooks.IncludeCycle):
+            return "ExpansionError"
+        if isinstance(candidate, hooks.MacroTooDeep):
+            return "LimitExceeded"
+        if isinstance(candidate, (MemoryError, RecursionError)):
+            return "LimitExceeded"
+        if type(candidate).__name__ == "_UnknownPackage":
+            return "PackageNotFoundError"
+    return "ExpansionError"
+
+
+def _message(exc: BaseException) -> str:
+    cause = _root_cause(exc)
+    if isinstance(cause, MemoryError):
+        return "memory limit hit while evaluating an expression (a xacro expression built a huge value)"
+    if isinstance(cause, RecursionError):
+        return "recursion limit hit (a macro or property refers to itself without end?)"
+    if isinstance(cause, (sandbox.Forbidden, hooks.MacroTooDeep, hooks.IncludeCycle)) \
+            or type(cause).__name__ == "_UnknownPackage":
+        return str(cause)
+    if cause is not exc and str(cause):
+        kind = "invalid expression: " if isinstance(cause, SyntaxError) else ""
+        suffix = getattr(exc, "suffix", None) or ""
+        text = f"{kind}{cause} {suffix}"
+    else:
+        text = str(exc) or repr(exc)
+    text = " ".join(text.split())
+    return text if len(text) < 2000 else text[:2000] + "..."
+
+
+def _bounded(chain: tuple, keep_inner: int = 8, keep_outer: int = 4) -> tuple:
+    """At most a dozen call sites: the innermost and the outermost ones."""
+    if len(chain) <= keep_inner + keep_outer:
+        return chain
+    return chain[:keep_inner] + chain[-keep_outer:]
+
+
+class _UnknownPackage(Exception):
+    def __init__(self, name: str, searched: tuple[str, ...]) -> None:
+        where = "; searched: " + ", ".join(searched) if searched else ""
+        super().__init__(f"unknown package '{name}'{where}")
+        self.name = name
+
+
+def run_job(job: dict, guard: sandbox.Guard) -> dict:
+    """Expand the job's file; return the result dictionary."""
+    from robotdesc.expansion.packages import PackageResolver, PackageResolverConfig, enclosing_package
+
+    resolver = PackageResolver(PackageResolverConfig(**{
+        k: tuple(tuple(x) if isinstance(x, list) else x for x in v) if isinstance(v, list) else v
+        for k, v in job["resolver"].items()}))
+    top = os.path.abspath(job["file"])
+    enclosing = enclosing_package(top)
+    guard.allow_root(str(enclosing[1]) if enclosing else os.path.dirname(top))
+    for folder in job.get("extra_roots", []):
+        guard.allow_root(folder)
+    state = hooks.ExpansionState(max_macro_depth=job["max_macro_depth"])
+
+    def find_package(name: str) -> str:
+        found = resolver.find(name)
+        if found is None:
+            raise _UnknownPackage(name, resolver.searched())
+        guard.allow_root(found.path)
+        return found.path
+
+    def check_file(path: str) -> None:
+        if guard.safe and not sandbox.is_within(path, guard.data_roots):
+            raise sandbox.Forbidden(
+                f"include of '{path}' escapes the package root ({', '.join(guard.data_roots)}); "
+                "safe mode refuses it (use --package-path for another package, or --trusted)")
+
+    import xacro
+
+    hooks.install(state, find_package, check_file)
+    hooks.install_environment(job["env"], guard.safe)
+    xacro.verbosity = 0
+    guard.armed = True
+    try:
+        xacro.init_stacks(top)
+        doc = xacro.parse(None, top)
+        xacro.process_doc(doc, mappings=dict(job["args"]))
+        text = doc.documentElement.toxml()
+    except hooks.DoctypeRefused as exc:
+        return _failure("XmlSyntaxError", str(exc), [exc.path, exc.line, exc.col])
+    except xml.parsers.expat.ExpatError as exc:
+        path = getattr(exc, "robotdesc_path", top)
+        message = xml.parsers.expat.ErrorString(exc.code) if exc.code else str(exc)
+        return _failure("XmlSyntaxError", f"malformed XML: {message}", [path, exc.lineno, exc.offset + 1])
+    except BaseException as exc:  # noqa: BLE001 -- every failure is reported, none is hidden
+        src, chain = state.error_src or (state.last_src, ())
+        if isinstance(_root_cause(exc), xml.parsers.expat.ExpatError):
+            cause = _root_cause(exc)
+            path = getattr(cause, "robotdesc_path", top)
+            return _failure("XmlSyntaxError", f"malformed XML: {xml.parsers.expat.ErrorString(cause.code)}",
+                            [path, cause.lineno, cause.offset + 1])
+        return _failure(_classify(exc), _message(exc), _span(src, state.files),
+                        [_span(c, state.files) for c in _bounded(chain) if c])
+    finally:
+        guard.armed = False
+    recursion = [[name, depth, _span(defined, state.files), _span(called, state.files)]
+                 for name, (depth, defined, called) in sorted(state.recursion.items())]
+    if len(text) > job["max_output_bytes"]:
+        return _failure("LimitExceeded", f"expanded document larger than {job['max_output_bytes']} bytes")
+    return {"ok": True, "xml": text, "files": state.files, "files_read": guard.files_read,
+            "packages": [[p.name, p.path, p.source] for p in resolver.resolved],
+            "macro_recursion": recursion}
+
+
+def main() -> None:
+    job = json.loads(sys.stdin.read())
+    sandbox.apply_limits(job["memory_mb"], job["cpu_seconds"])
+    guard = sandbox.Guard(safe=not job["trusted"], code_roots=sandbox.code_roots())
+    sandbox.install(guard)
+    real_stdout = sys.stdout
+    sys.stdout = sys.stderr  # xacro prints; keep stdout for the result
+    sys.setrecursionlimit(_RECURSION_LIMIT)
+    threading.stack_size(_THREAD_STACK_BYTES)
+    outcome: dict = {}
+
+    def target() -> None:
+        try:
+            outcome.update(run_job(job, guard))
+        except BaseException as exc:  # noqa: BLE001 -- reported to the parent as an internal error
+            import traceback
+
+            outcome.update(_failure("InternalError", f"{type(exc).__name__}: {exc}",
+                                    None, ()), traceback=traceback.format_exc())
+
+    thread = threading.Thread(target=target, name="xacro")
+    thread.start()
+    thread.join()
+    real_stdout.write(json.dumps(outcome))
+    real_stdout.flush()
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,23 @@
+"""Linting: run the selected rules over a description and collect diagnostics.
+
+`lint_file` (driver.py) is the pipeline; select.py chooses rules, suppress.py reads inline
+`<!-- robotdesc: ignore CODE -->` comments, targets.py turns command-line paths into files.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+_LAZY = {"lint_file": "driver", "LintResult": "result", "RuleCrashed": "result",
+         "LintFailure": "result",
+         "collect_targets": "targets"}
+
+__all__ = sorted(_LAZY)
+
+
+def __getattr__(name: str) -> Any:
+    if name not in _LAZY:
+        raise AttributeError(f"module 'robotdesc.linting' has no attribute '{name}'")
+    import importlib
+
+    return getattr(importlib.import_module(f"robotdesc.linting.{_LAZY[name]}"), name)

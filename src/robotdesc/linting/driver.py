@@ -1,0 +1,154 @@
+"""The lint pipeline for one file: expand -> parse -> rules -> ignores -> suppressions.
+
+I/O happens here (reading the description and its sources); the rules stay pure.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import fnmatch
+import logging
+import os
+from typing import Any, Iterable, Mapping, Sequence
+
+from robotdesc.config import Config, discover_config
+from robotdesc.diagnostics import Diagnostic, Finding, Severity
+from robotdesc.errors import RobotdescError
+from robotdesc.linting.result import LintResult, RuleCrashed
+from robotdesc.linting.select import is_selected, select_rules
+from robotdesc.linting.suppress import apply_suppressions, scan_files, unused_codes
+from robotdesc.source import Provenance, Span
+
+log = logging.getLogger(__name__)
+
+UNUSED_SUPPRESSION = "RD001"
+
+__all__ = ["LintResult", "RuleCrashed", "lint_file"]
+
+
+def lint_file(path: str, config: Config | None = None, *,
+              args: Mapping[str, str] | None = None, expand_options: Any = None,
+              select: Sequence[str] | None = None, ignore: Sequence[str] = ()) -> LintResult:
+    """Lint one description (.urdf, .urdf.xacro, .xacro).
+
+    Args:
+        path: the file to lint.
+        config: the settings (default: discovered by walking up from `path`).
+        args: xacro arguments; they override the config's `args`.
+        expand_options: `robotdesc.expansion.ExpandOptions`; the config's packages are added to
+            its `package_map` after the explicit ones.
+        select: rule selectors that replace the config's `select`.
+        ignore: rule selectors added to the config's `ignore`.
+
+    Raises:
+        InputError: the file could not be expanded or parsed (exit code 2).
+        RuleCrashed: a rule raised (a bug, exit code 3).
+    """
+    from robotdesc.expansion import ExpandOptions, expand_file
+    from robotdesc.model.parse import parse_urdf
+    from robotdesc.rules.registry import ExpansionFacts, RuleContext, all_rules, run_rule
+
+    target = os.path.abspath(path)
+    config = config if config is not None else discover_config(target)
+    options = expand_options or ExpandOptions()
+    options = dataclasses.replace(options, package_map=tuple(options.package_map)
+                                  + tuple(config.packages))
+    merged_args = {**dict(config.args), **dict(args or {})}
+    expanded = expand_file(target, merged_args, options=options)
+    robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
+
+    chosen_select = tuple(select) if select is not None else config.select
+    chosen_ignore = tuple(config.ignore) + tuple(ignore)
+    registered = all_rules()
+    rules = select_rules(registered, chosen_select, chosen_ignore)
+    facts = ExpansionFacts(expanded.macro_recursion, expanded.files_read, expanded.from_xacro)
+    fallback = robot.where or Provenance(Span(expanded.source))
+
+    diagnostics = []
+    for rule in rules:
+        configured = config.options_for(rule.code)
+        context = RuleContext(options=configured if configured is not None
+                              else rule.default_options(), expansion=facts)
+        try:
+            findings = list(run_rule(rule, robot, context))
+        except RobotdescError:
+            raise
+        except Exception as exc:  # a crashing rule is a bug: report it, naming the rule
+            raise RuleCrashed(rule.code, rule.name, target, exc) from exc
+        severity = config.severity_for(rule.code, rule.severity)
+        diagnostics.extend(_diagnostic(rule, severity, f, fallback, target) for f in findings)
+
+    diagnostics = [d for d in diagnostics if not _ignored_for_file(d, config)]
+    sources = (expanded.source, *expanded.files_read, *expanded.files)
+    suppressions = scan_files(p for p in sources if p and os.path.isfile(p))
+    outcome = apply_suppressions(diagnostics, suppressions)
+    kept = list(outcome.kept)
+    unused_rule = next((r for r in registered if r.code == UNUSED_SUPPRESSION), None)
+    if unused_rule is not None and unused_rule in rules:
+        ran = {r.code for r in rules} | {r.name for r in rules}
+        known = {r.code for r in registered} | {r.name for r in registered}
+        severity = config.severity_for(unused_rule.code, unused_rule.severity)
+        unused = (_diagnostic(unused_rule, severity, finding, fallback, target)
+                  for finding in _unused_findings(suppressions, outcome.used, ran, known))
+        kept.extend(d for d in unused if not _ignored_for_file(d, config))
+    log.debug("%s: %d rules ran, %d diagnostics, %d suppressed", target, len(rules), len(kept),
+              len(outcome.suppressed))
+    return LintResult(target=target, diagnostics=tuple(sorted(kept, key=Diagnostic.sort_key)),
+                      expanded=expanded, robot=robot, suppressed=len(outcome.suppressed),
+                      config_path=config.path, rules_run=tuple(r.code for r in rules))
+
+
+def _diagnostic(rule: Any, severity: Severity, finding: Finding, fallback: Provenance,
+                target: str) -> Diagnostic:
+    return Diagnostic(code=rule.code, name=rule.name, severity=severity,
+                      message=finding.message, where=finding.where or fallback,
+                      element=finding.element, fix=finding.fix, target=target)
+
+
+def _unused_findings(suppressions: Iterable[Any], used: frozenset, ran: set[str],
+                     known: set[str]) -> Iterable[Finding]:
+    """RD001 findings: comments naming no code, unknown codes, and codes that hit nothing.
+
+    A code of a rule that did not run (not selected) is not reported: it cannot be judged.
+    """
+    suppressions = list(suppressions)
+    for suppression in suppressions:
+        where = Provenance(Span(suppression.path, suppression.line, suppression.col))
+        if not suppression.codes:
+            yield Finding("suppression comment names no rule code "
+                          "(write `robotdesc: ignore CODE`)", where, "comment")
+    for suppression, code in unused_codes(suppressions, used):
+        where = Provenance(Span(suppression.path, suppression.line, suppression.col))
+        if code not in known:
+            yield Finding(f"suppression names unknown rule '{code}'", where, f"comment:{code}")
+        elif code in ran:
+            yield Finding(f"unused suppression: no {code} finding on this line or the next",
+                          where, f"comment:{code}")
+
+
+def _ignored_for_file(diagnostic: Diagnostic, config: Config) -> bool:
+    """Whether a per-file ignore of the config matches the finding's file or the target."""
+    if not config.per_file_ignores:
+        return False
+    paths = {diagnostic.target}
+    if diagnostic.where is not None:
+        paths.add(diagnostic.where.span.path)
+    for glob, selectors in config.per_file_ignores:
+        if is_selected(diagnostic.code, diagnostic.name, selectors) and any(
+                _glob_matches(glob, p, config.root) for p in paths if p):
+            return True
+    return False
+
+
+def _glob_matches(glob: str, path: str, root: str) -> bool:
+    """Match `path` against a per-file-ignores glob relative to the config's directory.
+
+    A glob without "/" matches the file name anywhere; a leading "**/" may match nothing.
+    """
+    absolute = os.path.abspath(path)
+    relative = os.path.relpath(absolute, root).replace(os.sep, "/")
+    pattern = glob.replace(os.sep, "/")
+    if "/" not in pattern:
+        return fnmatch.fnmatch(os.path.basename(absolute), pattern)
+    candidates = {pattern, pattern[3:] if pattern.startswith("**/") else pattern}
+    return any(fnmatch.fnmatch(relative, p) or fnmatch.fnmatch(absolute, p) for p in candidates)

@@ -1,0 +1,89 @@
+"""What linting one file produces, and the error raised when a rule crashes."""
+
+from __future__ import annotations
+
+import html
+from dataclasses import dataclass
+from typing import Any
+
+from robotdesc.diagnostics import Diagnostic, Severity
+from robotdesc.errors import InputError, RobotdescError
+
+
+class RuleCrashed(RobotdescError):
+    """A rule's check raised: a bug in robotdesc (exit code 3), named after the rule."""
+
+    def __init__(self, code: str, name: str, target: str, cause: BaseException) -> None:
+        super().__init__(f"rule {code} ({name}) crashed on {target}: "
+                         f"{type(cause).__name__}: {cause}")
+        self.code, self.name, self.target = code, name, target
+
+
+@dataclass(frozen=True)
+class LintResult:
+    """The outcome of linting one file.
+
+    Attributes:
+        target: the linted file (absolute path).
+        diagnostics: what was found, sorted by file, line and code.
+        expanded: the expansion (`robotdesc.expansion.result.Expanded`).
+        robot: the parsed model (`robotdesc.model.elements.Robot`).
+        suppressed: how many findings inline comments suppressed.
+        config_path: the config file that applied (None: defaults).
+        rules_run: the codes of the rules that ran.
+    """
+
+    target: str
+    diagnostics: tuple[Diagnostic, ...]
+    expanded: Any = None
+    robot: Any = None
+    suppressed: int = 0
+    config_path: str | None = None
+    rules_run: tuple[str, ...] = ()
+
+    @property
+    def counts(self) -> dict[Severity, int]:
+        """The number of diagnostics per severity, worst first (every severity is a key)."""
+        counts = {level: 0 for level in sorted(Severity, reverse=True)}
+        for diagnostic in self.diagnostics:
+            counts[diagnostic.severity] += 1
+        return counts
+
+    def failed(self, fail_on: Severity = Severity.INFO) -> bool:
+        """Whether any diagnostic is at or above `fail_on`."""
+        return any(d.severity >= fail_on for d in self.diagnostics)
+
+    def to_dict(self) -> dict:
+        """A JSON-ready dict in the format of `robotdesc lint --format json` (this target)."""
+        from robotdesc.report.json import report_dict
+
+        return report_dict([self])
+
+    def __repr__(self) -> str:
+        counts = ", ".join(f"{n} {level}" for level, n in self.counts.items())
+        return f"<LintResult {self.target!r}: {counts}>"
+
+    def _repr_html_(self) -> str:
+        """An HTML table of the diagnostics (for Jupyter)."""
+        rows = "".join(
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>".format(
+                *(html.escape(str(cell)) for cell in (
+                    d.where.span if d.where else "", d.code, d.name, d.severity, d.message)))
+            for d in self.diagnostics)
+        head = ("<tr><th>location</th><th>code</th><th>rule</th><th>severity</th>"
+                "<th>message</th></tr>")
+        caption = html.escape(repr(self))
+        return f"<table><caption>{caption}</caption>{head}{rows}</table>"
+
+
+@dataclass(frozen=True)
+class LintFailure:
+    """A file that could not be checked (exit code 2).
+
+    Attributes:
+        target: the file as given.
+        error: why (an `InputError`, carrying file:line and the macro call chain).
+    """
+
+    target: str
+    error: InputError

@@ -1,0 +1,57 @@
+"""Which rules run: `select` / `ignore` selectors, resolved by specificity (like ruff).
+
+A selector is "ALL", a code prefix ("J", "J1", "J101", case-insensitive) or a rule name
+("revolute-without-limit"). For each rule the most specific matching selector decides; on a
+tie `ignore` wins. So `select = ["J"]` with `ignore = ["J1"]` runs J2xx only, and
+`ignore = ["J"]` with `select = ["J101"]` still runs J101.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Iterable, Sequence
+
+_EXACT = 1000  # specificity of a full code or a rule name
+
+
+def specificity(selector: str, code: str, name: str) -> int:
+    """How specifically `selector` matches the rule (0: it does not match)."""
+    text = selector.strip()
+    if text.upper() == "ALL":
+        return 1
+    if text == name or text.upper() == code:
+        return _EXACT
+    if code.startswith(text.upper()) and text:
+        return 1 + len(text)
+    return 0
+
+
+def best_match(selectors: Iterable[str], code: str, name: str) -> int:
+    """The highest specificity among `selectors` for the rule (0: none matches)."""
+    return max((specificity(s, code, name) for s in selectors), default=0)
+
+
+def is_selected(code: str, name: str, select: Sequence[str] | None,
+                ignore: Sequence[str] = ()) -> bool:
+    """Whether a rule runs under these selectors (`select=None` means all rules)."""
+    chosen = best_match(select if select is not None else ("ALL",), code, name)
+    return chosen > 0 and chosen > best_match(ignore, code, name)
+
+
+def select_rules(rules: Iterable[Any], select: Sequence[str] | None,
+                 ignore: Sequence[str] = ()) -> list[Any]:
+    """The rules (objects with `code` and `name`) that run, in their given order."""
+    return [r for r in rules if is_selected(r.code, r.name, select, ignore)]
+
+
+def unknown_selectors(selectors: Iterable[str], rules: Iterable[Any]) -> list[str]:
+    """The selectors that match none of `rules` ("ALL" always matches)."""
+    rules = list(rules)
+    return [s for s in selectors
+            if s.strip().upper() != "ALL" and not any(specificity(s, r.code, r.name)
+                                                      for r in rules)]
+
+
+def find_rule(rules: Iterable[Any], code_or_name: str) -> Any | None:
+    """The rule among `rules` with this code (case-insensitive) or name, or None."""
+    key = code_or_name.strip()
+    return next((r for r in rules if r.code == key.upper() or r.name == key), None)

@@ -1,0 +1,201 @@
+"""A file cache of mesh summaries, keyed by the mesh file's content hash and the scale.
+
+Where: `$ROBOTDESC_CACHE_DIR` if set (an empty value, "0", "off" or "none" turns the cache
+off), else `$XDG_CACHE_HOME/robotdesc`, else `~/.cache/robotdesc`. Layout:
+
+    <dir>/meshes-v<N>/<2 hex>/<sha256>.json   a summary (or a mesh error) per content + scale
+    <dir>/stat-v<N>/<2 hex>/<sha256>.json     path -> (size, mtime, inode) -> content hash
+
+The stat index lets a warm run skip reading and hashing unchanged files. Writes are atomic
+(a temporary file renamed into place); an unreadable or corrupt entry is ignored (and
+rewritten), never an error. Bump `CACHE_VERSION` whenever loading or summarizing changes.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import logging
+import os
+import stat
+import tempfile
+from pathlib import Path
+from typing import Any, Mapping, Sequence
+
+from robotdesc.mesh.health import MeshHealth
+from robotdesc.mesh.mass import MassProperties
+from robotdesc.mesh.summary import MassMethod, MeshSummary
+from robotdesc.mesh.validate import MeshError, MeshErrorKind
+
+log = logging.getLogger(__name__)
+
+CACHE_VERSION = 1
+_OFF = {"", "0", "off", "none", "false", "no"}
+#: Errors that depend on the limits in force, not on the file alone: never cached.
+_UNCACHED_ERRORS = {MeshErrorKind.TOO_LARGE, MeshErrorKind.UNREADABLE}
+
+
+def default_cache_dir(env: Mapping[str, str] | None = None) -> Path | None:
+    """The cache directory the environment asks for, or None when the cache is off."""
+    env = os.environ if env is None else env
+    if "ROBOTDESC_CACHE_DIR" in env:
+        value = env["ROBOTDESC_CACHE_DIR"].strip()
+        return None if value.lower() in _OFF else Path(value).expanduser()
+    xdg = env.get("XDG_CACHE_HOME", "").strip()
+    base = Path(xdg) if xdg else Path(env.get("HOME", str(Path.home()))) / ".cache"
+    return base / "robotdesc"
+
+
+class MeshCache:
+    """Summaries of mesh files on disk.
+
+    Args:
+        directory: where entries live (created on first write).
+    """
+
+    def __init__(self, directory: str | os.PathLike[str]) -> None:
+        self.directory = Path(directory)
+        self._entries = self.directory / f"meshes-v{CACHE_VERSION}"
+        self._stats = self.directory / f"stat-v{CACHE_VERSION}"
+        self._write_failed = False
+
+    def key_for(self, path: str, scale: Sequence[float]) -> str | None:
+        """The cache key of a file's content at a scale; None if the file cannot be read."""
+        digest = self.content_digest(path)
+        if digest is None:
+            return None
+        scale_text = ",".join(repr(float(s)) for s in scale)
+        return hashlib.sha256(f"{digest}|{scale_text}".encode()).hexdigest()
+
+    def content_digest(self, path: str) -> str | None:
+        """SHA-256 of the file's bytes, served from the stat index when the file is unchanged."""
+        try:
+            info = os.stat(path)
+        except OSError:
+            return None
+        if not stat.S_ISREG(info.st_mode):
+            return None
+        stamp = [info.st_size, info.st_mtime_ns, info.st_ctime_ns, info.st_ino]
+        path_key = hashlib.sha256(os.path.realpath(path).encode()).hexdigest()
+        index_file = _shard(self._stats, path_key)
+        known = _read_json(index_file)
+        if isinstance(known, dict) and known.get("stamp") == stamp \
+                and isinstance(known.get("digest"), str):
+            return known["digest"]
+        digest = _hash_file(path)
+        if digest is not None:
+            self._write(index_file, {"stamp": stamp, "digest": digest})
+        return digest
+
+    def get(self, key: str, path: str = "") -> MeshSummary | MeshError | None:
+        """The stored summary (or mesh error) for `key`, or None when absent or corrupt."""
+        data = _read_json(_shard(self._entries, key))
+        if data is None:
+            return None
+        try:
+            if "error" in data:
+                error = data["error"]
+                return MeshError(MeshErrorKind(error["kind"]), str(error["detail"]), path)
+            return summary_from_json(data["summary"])
+        except (KeyError, TypeError, ValueError) as error:
+            log.debug("ignoring corrupt mesh cache entry %s: %s", key, error)
+            return None
+
+    def put(self, key: str, summary: MeshSummary) -> None:
+        """Store a summary (atomically; a failed write is logged once, not raised)."""
+        self._write(_shard(self._entries, key), {"summary": summary_to_json(summary)})
+
+    def put_error(self, key: str, error: MeshError) -> None:
+        """Store a mesh error that depends on the file's content alone."""
+        if error.kind in _UNCACHED_ERRORS:
+            return
+        self._write(_shard(self._entries, key),
+                    {"error": {"kind": error.kind.value, "detail": error.detail}})
+
+    def _write(self, target: Path, data: Any) -> None:
+        try:
+            target.parent.mkdir(parents=True, exist_ok=True)
+            handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=".tmp-",
+                                                 suffix=".json")
+            try:
+                with os.fdopen(handle, "w", encoding="utf-8") as stream:
+                    json.dump(data, stream, separators=(",", ":"))
+                os.replace(temporary, target)
+            except BaseException:
+                os.unlink(temporary)
+                raise
+        except OSError as error:
+            if not self._write_failed:
+                log.warning("mesh cache not written to %s: %s", self.directory, error)
+                self._write_failed = True
+
+
+def summary_to_json(summary: MeshSummary) -> dict[str, Any]:
+    """A JSON-ready dict of a summary (floats kept exactly through repr round-trips)."""
+    props = summary.properties
+    return {
+        "properties": None if props is None else {
+            "mass": props.mass, "center_of_mass": list(props.center_of_mass),
+            "inertia": [list(row) for row in props.inertia], "volume": props.volume},
+        "method": summary.method.value,
+        "signed_volume": summary.signed_volume,
+        "bounds": [list(summary.bounds[0]), list(summary.bounds[1])],
+        "health": vars(summary.health),
+        "unit_meter": summary.unit_meter,
+        "bodies": summary.bodies,
+        "notes": list(summary.notes),
+    }
+
+
+def summary_from_json(data: dict[str, Any]) -> MeshSummary:
+    """The inverse of `summary_to_json`.
+
+    Raises:
+        KeyError, TypeError, ValueError: the data is not a summary.
+    """
+    props = data["properties"]
+    properties = None if props is None else MassProperties(
+        float(props["mass"]), _vec3(props["center_of_mass"]),
+        (_vec3(props["inertia"][0]), _vec3(props["inertia"][1]), _vec3(props["inertia"][2])),
+        float(props["volume"]))
+    return MeshSummary(
+        properties=properties,
+        method=MassMethod(data["method"]),
+        signed_volume=float(data["signed_volume"]),
+        bounds=(_vec3(data["bounds"][0]), _vec3(data["bounds"][1])),
+        health=MeshHealth(**{k: int(v) for k, v in data["health"].items()}),
+        unit_meter=float(data["unit_meter"]),
+        bodies=int(data["bodies"]),
+        notes=tuple(str(n) for n in data["notes"]),
+    )
+
+
+def _vec3(values: Sequence[Any]) -> tuple[float, float, float]:
+    x, y, z = (float(v) for v in values)
+    return (x, y, z)
+
+
+def _shard(root: Path, digest: str) -> Path:
+    return root / digest[:2] / f"{digest}.json"
+
+
+def _read_json(path: Path) -> Any:
+    try:
+        with open(path, encoding="utf-8") as stream:
+            return json.load(stream)
+    except FileNotFoundError:
+        return None
+    except (OSError, ValueError) as error:
+        log.debug("ignoring unreadable cache entry %s: %s", path, error)
+        return None
+
+
+def _hash_file(path: str, block: int = 1 << 20) -> str | None:
+    digest = hashlib.sha256()
+    try:
+        with open(path, "rb") as stream:
+            while chunk := stream.read(block):
+                digest.update(chunk)
+    except OSError:
+        return None
+    return digest.hexdigest()

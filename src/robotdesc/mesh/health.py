@@ -1,0 +1,247 @@
+"""Topological health of a triangle soup: closed, consistently wound, degenerate faces.
+
+Vertices are merged by exact coordinate equality (as MeshLab does when it imports an STL),
+then every edge is counted: a closed (watertight) surface uses each undirected edge exactly
+twice, and a consistently wound one uses each directed edge once, in opposite directions.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from robotdesc.mesh.mass import bounds
+
+#: A face whose area is below this fraction of the squared bounding-box diagonal is degenerate.
+DEGENERATE_AREA_FRACTION = 1e-14
+
+
+@dataclass(frozen=True)
+class MeshHealth:
+    """What the edge counts say about a surface.
+
+    Attributes:
+        triangles: number of faces in the file (after triangulation).
+        vertices: number of distinct vertex positions.
+        degenerate_faces: faces with a repeated vertex or (almost) zero area.
+        boundary_edges: edges used by one face only (holes: the mesh is open).
+        nonmanifold_edges: edges used by more than two faces.
+        misoriented_edges: edges shared by two faces that run them the same way (the
+            winding flips there).
+        unbalanced_edges: edges run more often one way than the other; zero exactly when
+            the surface is a closed, oriented cycle whose enclosed volume is well defined
+            (which a union of closed bodies touching along edges also is).
+        hole_loops: connected groups of boundary edges (about the number of holes).
+    """
+
+    triangles: int
+    vertices: int
+    degenerate_faces: int
+    boundary_edges: int
+    nonmanifold_edges: int
+    misoriented_edges: int
+    unbalanced_edges: int = 0
+    hole_loops: int = 0
+
+    @property
+    def watertight(self) -> bool:
+        """Every edge is shared by exactly two faces (a closed two-manifold, as MeshLab asks)."""
+        return self.boundary_edges == 0 and self.nonmanifold_edges == 0
+
+    @property
+    def consistent_winding(self) -> bool:
+        """Neighbouring faces agree on orientation along every shared edge."""
+        return self.misoriented_edges == 0
+
+    @property
+    def encloses_volume(self) -> bool:
+        """The signed volume integral is exact (up to its overall sign) for this surface."""
+        return self.unbalanced_edges == 0
+
+
+@dataclass(frozen=True, eq=False)
+class Topology:
+    """A soup's merged vertices and its edges, computed once for health and repair.
+
+    Attributes:
+        vertices: (V, 3) distinct positions.
+        faces: (n, 3) indices into `vertices`, one row per input triangle.
+        edge_low, edge_high: per distinct undirected edge, its two vertex indices (low < high).
+        edge_uses: faces per distinct undirected edge.
+        edge_forward: how many of those faces run the edge low -> high.
+    """
+
+    vertices: np.ndarray
+    faces: np.ndarray
+    edge_low: np.ndarray
+    edge_high: np.ndarray
+    edge_uses: np.ndarray
+    edge_forward: np.ndarray
+
+    @property
+    def edge_balance(self) -> np.ndarray:
+        """Per distinct edge, (uses low -> high) - (uses high -> low)."""
+        return 2 * self.edge_forward - self.edge_uses
+
+
+def topology(triangles: np.ndarray) -> Topology:
+    """Merge vertices and count each undirected edge's uses in each direction.
+
+    Directed edges are sorted once by a key that holds the undirected edge and, in its lowest
+    bit, the direction; a plain sort is several times faster than the argsort it replaces.
+    """
+    vertices, faces = merge_vertices(triangles)
+    repeated = _repeated(faces)
+    good = faces[~repeated] if repeated.any() else faces
+    heads = good.reshape(-1)
+    tails = good[:, [1, 2, 0]].reshape(-1)
+    count = np.int64(max(len(vertices), 1))
+    low, high = np.minimum(heads, tails), np.maximum(heads, tails)
+    keys = np.sort((low * count + high) * 2 + (heads > tails))
+    undirected = keys >> 1
+    if len(keys):
+        start = np.concatenate(([0], np.flatnonzero(undirected[1:] != undirected[:-1]) + 1))
+        uses = np.diff(np.concatenate((start, [len(keys)])))
+        forward = np.add.reduceat(1 - (keys & 1), start)
+        edge = undirected[start]
+    else:
+        uses = forward = edge = np.zeros(0, dtype=np.int64)
+    return Topology(vertices, faces, edge // count, edge % count, uses, forward)
+
+
+def mesh_health(triangles: np.ndarray, topo: Topology | None = None) -> MeshHealth:
+    """Count degenerate faces and boundary, non-manifold, misoriented and unbalanced edges.
+
+    Args:
+        triangles: (n, 3, 3) triangle soup (any length unit).
+        topo: its topology, if already computed.
+    """
+    topo = topology(triangles) if topo is None else topo
+    degenerate = _repeated(topo.faces) | _tiny_area(triangles)
+    uses, balance = topo.edge_uses, topo.edge_balance
+    return MeshHealth(
+        triangles=len(triangles),
+        vertices=len(topo.vertices),
+        degenerate_faces=int(np.count_nonzero(degenerate)),
+        boundary_edges=int(np.count_nonzero(uses == 1)),
+        nonmanifold_edges=int(np.count_nonzero(uses > 2)),
+        misoriented_edges=int(np.count_nonzero((uses == 2) & (balance != 0))),
+        unbalanced_edges=int(np.count_nonzero(balance != 0)),
+        hole_loops=_count_loops(topo),
+    )
+
+
+def hole_caps(topo: Topology) -> np.ndarray:
+    """Triangles that close each hole of a consistently wound surface.
+
+    Every boundary edge a -> b (used once) is joined to the centroid c of its loop by a
+    triangle (c, b, a), wound to match its neighbour; a planar hole is closed exactly.
+
+    Returns:
+        (k, 3, 3) cap triangles (empty when there are no boundary edges).
+    """
+    a, b = _boundary_edges(topo)
+    if len(a) == 0:
+        return np.zeros((0, 3, 3))
+    labels = _loop_labels(a, b, len(topo.vertices))
+    _, loop = np.unique(labels[a], return_inverse=True)
+    weights = np.bincount(loop)
+    centroid = np.stack([np.bincount(loop, topo.vertices[a][:, k]) for k in range(3)], axis=1)
+    centroid /= weights[:, None]
+    return np.stack([centroid[loop], topo.vertices[b], topo.vertices[a]], axis=1)
+
+
+def _boundary_edges(topo: Topology) -> tuple[np.ndarray, np.ndarray]:
+    """Heads and tails of the edges used by one face, in that face's direction."""
+    single = topo.edge_uses == 1
+    low, high = topo.edge_low[single], topo.edge_high[single]
+    forward = topo.edge_forward[single] == 1
+    return np.where(forward, low, high), np.where(forward, high, low)
+
+
+def merge_vertices(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Merge exactly equal vertex positions of a soup.
+
+    Rows are grouped by a 64-bit hash of their coordinates, and the grouping is checked
+    against the coordinates themselves (an exact sort is used in the unlikely event of a
+    hash collision).
+
+    Args:
+        triangles: (n, 3, 3) float array.
+
+    Returns:
+        (unique vertices (V, 3) float64, faces (n, 3) int64 indices into them).
+    """
+    flat = triangles.reshape(-1, 3)
+    keys = _row_hashes(flat)
+    order = np.argsort(keys, kind="stable")
+    ordered = keys[order]
+    starts = np.empty(len(ordered), dtype=bool)
+    starts[:1] = True
+    np.not_equal(ordered[1:], ordered[:-1], out=starts[1:])
+    inverse = np.empty(len(keys), dtype=np.int64)
+    inverse[order] = np.cumsum(starts) - 1
+    unique = np.asarray(flat[order[starts]], dtype=np.float64)
+    if not np.array_equal(unique[inverse], flat):  # a hash collision: sort exactly instead
+        rows = np.asarray(flat, dtype=np.float64) + 0.0  # -0.0 becomes +0.0
+        unique, inverse = np.unique(rows, axis=0, return_inverse=True)
+    return unique, inverse.reshape(-1, 3).astype(np.int64, copy=False)
+
+
+def _repeated(faces: np.ndarray) -> np.ndarray:
+    return ((faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2])
+            | (faces[:, 2] == faces[:, 0]))
+
+
+def _loop_labels(a: np.ndarray, b: np.ndarray, vertex_count: int) -> np.ndarray:
+    """Connected-component label per vertex of the graph of edges a - b."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    graph = coo_matrix((np.ones(len(a)), (a, b)), shape=(vertex_count, vertex_count))
+    _, labels = connected_components(graph, directed=False)
+    return labels
+
+
+def _count_loops(topo: Topology) -> int:
+    a, b = _boundary_edges(topo)
+    if len(a) == 0:
+        return 0
+    labels = _loop_labels(a, b, len(topo.vertices))
+    return int(len(np.unique(labels[a])))
+
+
+def _row_hashes(rows: np.ndarray, chunk: int = 1 << 16) -> np.ndarray:
+    """A 64-bit hash of each (x, y, z) row's float64 bits (-0.0 and +0.0 hash alike)."""
+    out = np.empty(len(rows), dtype=np.uint64)
+    m1 = np.uint64(0x9E3779B97F4A7C15)
+    m2 = np.uint64(0xC2B2AE3D27D4EB4F)
+    m3 = np.uint64(0x165667B19E3779F9)
+    shift = np.uint64(29)
+    with np.errstate(over="ignore"):
+        for start in range(0, len(rows), chunk):
+            cols = np.ascontiguousarray(np.asarray(rows[start:start + chunk], dtype=np.float64).T)
+            cols += 0.0
+            x, y, z = cols.view(np.uint64)
+            h = x * m1
+            h ^= h >> shift
+            h += y * m2
+            h ^= h >> shift
+            h += z * m3
+            h ^= h >> shift
+            out[start:start + chunk] = h * m1
+    return out
+
+
+def _tiny_area(triangles: np.ndarray) -> np.ndarray:
+    cols = np.asarray(triangles, dtype=np.float64).transpose(2, 1, 0)  # [axis][corner][face]
+    (x0, x1, x2), (y0, y1, y2), (z0, z1, z2) = cols
+    ax, ay, az = x1 - x0, y1 - y0, z1 - z0
+    bx, by, bz = x2 - x0, y2 - y0, z2 - z0
+    cx, cy, cz = ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx
+    doubled_area_sq = cx * cx + cy * cy + cz * cz
+    low, high = bounds(triangles)
+    diagonal_sq = float(np.sum((np.asarray(high) - np.asarray(low)) ** 2))
+    threshold = 2.0 * DEGENERATE_AREA_FRACTION * diagonal_sq
+    return doubled_area_sq <= threshold * threshold

@@ -1,0 +1,191 @@
+"""What robotdesc knows about one mesh file: mass properties, bounds, health, and how the
+mass properties were obtained when the surface is not a clean closed solid.
+
+Fallbacks, stated in `MeshSummary.method` and `notes`:
+- closed and oriented (every edge run as often each way), positive volume: the exact
+  integral ("exact");
+- the same with negative volume (inverted, normals inward): the integral with the winding
+  reversed ("flipped");
+- open but consistently wound and manifold: each hole closed by a fan of triangles to the
+  centroid of its boundary loop, then as above ("holes-capped"; exact for planar holes);
+- otherwise (misoriented or non-manifold and open, or enclosing no volume): the convex
+  hull of its vertices ("convex-hull"), an upper bound on the volume;
+- no hull either (flat or collinear points): no mass properties ("none").
+A negative or NaN mass is never produced.
+"""
+
+from __future__ import annotations
+
+import enum
+import logging
+import os
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Sequence
+
+import numpy as np
+
+from robotdesc.mesh.health import MeshHealth, hole_caps, merge_vertices, mesh_health, topology
+from robotdesc.mesh.load import LoadedMesh, load_mesh
+from robotdesc.mesh.mass import MassProperties, Vec3, VolumeIntegrals, bounds, volume_integrals
+from robotdesc.mesh.validate import DEFAULT_LIMITS, MeshError, MeshLimits
+
+if TYPE_CHECKING:
+    from robotdesc.mesh.cache import MeshCache
+
+log = logging.getLogger(__name__)
+
+#: A closed mesh whose |signed volume| is below this fraction of its bounding box's is flat.
+FLAT_VOLUME_FRACTION = 1e-9
+
+
+class MassMethod(str, enum.Enum):
+    """How a summary's mass properties were computed."""
+
+    EXACT = "exact"
+    FLIPPED = "flipped"
+    HOLES_CAPPED = "holes-capped"
+    CONVEX_HULL = "convex-hull"
+    NONE = "none"
+
+
+@dataclass(frozen=True)
+class MeshSummary:
+    """Mass properties, bounds and health of one mesh file at one scale.
+
+    Attributes:
+        properties: at density 1 kg/m^3 (mass = volume, m^3) in the mesh's own frame (m);
+            None when no solid could be made of it (method NONE).
+        method: how `properties` were obtained (see the module docstring).
+        signed_volume: the volume the surface encloses as wound (m^3); negative when inverted.
+        bounds: (lower, upper) corners of the axis-aligned bounding box (m).
+        health: the surface's topology.
+        unit_meter: the COLLADA unit factor applied (1.0 for other formats).
+        bodies: number of geometries combined from the file.
+        notes: the fallbacks taken, in a user's words.
+    """
+
+    properties: MassProperties | None
+    method: MassMethod
+    signed_volume: float
+    bounds: tuple[Vec3, Vec3]
+    health: MeshHealth
+    unit_meter: float = 1.0
+    bodies: int = 1
+    notes: tuple[str, ...] = ()
+
+    @property
+    def extent(self) -> Vec3:
+        """Size of the bounding box along x, y, z (m)."""
+        low, high = self.bounds
+        return (high[0] - low[0], high[1] - low[1], high[2] - low[2])
+
+
+def summarize(mesh: LoadedMesh) -> MeshSummary:
+    """Compute the summary of a loaded mesh (pure: no I/O)."""
+    triangles = mesh.triangles
+    topo = topology(triangles)
+    health = mesh_health(triangles, topo)
+    box = bounds(triangles)
+    integrals = volume_integrals(triangles)
+    signed = integrals.volume
+    common = dict(signed_volume=signed, bounds=box, health=health,
+                  unit_meter=mesh.unit_meter, bodies=mesh.bodies)
+    if health.encloses_volume and not _flat(signed, box):
+        return _oriented(integrals, MassMethod.EXACT, (), common)
+    if (health.boundary_edges and not health.misoriented_edges
+            and not health.nonmanifold_edges):
+        caps = hole_caps(topo)
+        capped = volume_integrals(np.concatenate([triangles, caps]))
+        if not _flat(capped.volume, box):
+            note = (f"the surface is open ({health.boundary_edges} boundary edges in "
+                    f"{health.hole_loops} loops); each hole was closed by a fan to its centroid")
+            return _oriented(capped, MassMethod.HOLES_CAPPED, (note,), common)
+    reason = _why_not_solid(health, _flat(signed, box))
+    hull = convex_hull_properties(triangles)
+    if hull is None:
+        note = f"the surface {reason}, and its points span no volume: no mass properties"
+        return MeshSummary(None, MassMethod.NONE, notes=(note,), **common)
+    note = f"the surface {reason}; mass properties are those of its convex hull"
+    return MeshSummary(hull, MassMethod.CONVEX_HULL, notes=(note,), **common)
+
+
+def _oriented(integrals: VolumeIntegrals, method: MassMethod, notes: tuple[str, ...],
+              common: dict) -> MeshSummary:
+    """The summary from integrals of a closed surface, reversing an inverted one."""
+    if integrals.volume > 0:
+        return MeshSummary(integrals.properties(), method, notes=notes, **common)
+    note = (f"the surface is inverted (normals point inward, signed volume "
+            f"{integrals.volume:.6g} m^3); its winding was reversed")
+    return MeshSummary(integrals.flipped().properties(),
+                       MassMethod.FLIPPED if method is MassMethod.EXACT else method,
+                       notes=notes + (note,), **common)
+
+
+def _flat(volume: float, box: tuple[Vec3, Vec3]) -> bool:
+    diagonal = float(np.linalg.norm(np.subtract(box[1], box[0])))
+    return abs(volume) <= FLAT_VOLUME_FRACTION * diagonal ** 3
+
+
+def analyze_mesh_file(path: str | os.PathLike[str], scale: Sequence[float] = (1.0, 1.0, 1.0),
+                      limits: MeshLimits = DEFAULT_LIMITS,
+                      cache: MeshCache | None = None) -> MeshSummary:
+    """Load and summarize a mesh file, through the cache when one is given.
+
+    Raises:
+        MeshError: the file cannot be used as a mesh (also served from the cache).
+    """
+    name = os.fspath(path)
+    key = cache.key_for(name, scale) if cache is not None else None
+    if cache is not None and key is not None:
+        hit = cache.get(key, name)
+        if hit is not None:
+            if isinstance(hit, MeshError):
+                raise hit
+            return hit
+    try:
+        summary = summarize(load_mesh(name, scale, limits))
+    except MeshError as error:
+        if cache is not None and key is not None:
+            cache.put_error(key, error)
+        raise
+    if cache is not None and key is not None:
+        cache.put(key, summary)
+    return summary
+
+
+def convex_hull_properties(triangles: np.ndarray) -> MassProperties | None:
+    """Mass properties at density 1 of the convex hull of a soup's vertices, or None when
+    the points span no volume (all coplanar or fewer than four distinct)."""
+    from scipy.spatial import ConvexHull, QhullError  # lazy: only the fallback needs qhull
+
+    points, _ = merge_vertices(triangles)
+    if len(points) < 4:
+        return None
+    try:
+        hull = ConvexHull(points)
+    except (QhullError, ValueError) as error:
+        log.debug("convex hull failed: %s", error)
+        return None
+    faces = hull.simplices
+    soup = points[faces]
+    normal = np.cross(soup[:, 1] - soup[:, 0], soup[:, 2] - soup[:, 0])
+    inward = np.einsum("ij,ij->i", normal, hull.equations[:, :3]) < 0
+    soup[inward] = soup[inward][:, ::-1]
+    integrals = volume_integrals(soup)
+    return integrals.properties() if integrals.volume > 0 else None
+
+
+def _why_not_solid(health: MeshHealth, flat: bool) -> str:
+    reasons = []
+    if health.boundary_edges:
+        reasons.append(f"is open ({health.boundary_edges} boundary edges)")
+    if health.nonmanifold_edges:
+        reasons.append(f"has {health.nonmanifold_edges} non-manifold edges")
+    if health.misoriented_edges:
+        reasons.append(f"is inconsistently wound ({health.misoriented_edges} edges)")
+    if not reasons and health.unbalanced_edges:
+        reasons.append(f"has {health.unbalanced_edges} edges run more often one way than "
+                       "the other")
+    if not reasons and flat:
+        reasons.append("encloses no volume")
+    return ", ".join(reasons)

@@ -1,0 +1,553 @@
+"""Strict URDF parse: bytes -> `Robot`, every element tagged with its provenance.
+
+The XML is parsed without recovery, without entity expansion, DTD loading or network access;
+a document that declares a DOCTYPE is refused. Numbers that do not parse become None (or the
+URDF default) and a `ValueIssue` on the robot, so that one bad value is a finding, not a crash.
+Unknown elements are ignored, as URDF consumers do.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import re
+from collections.abc import Callable
+
+from lxml import etree
+
+from robotdesc.errors import InputError, XmlSyntaxError
+from robotdesc.model.elements import (
+    Actuator,
+    Box,
+    Calibration,
+    Capsule,
+    Collision,
+    Cylinder,
+    Dynamics,
+    GazeboBlock,
+    Geometry,
+    Inertia,
+    Inertial,
+    Joint,
+    JointLimit,
+    Link,
+    Material,
+    MeshRef,
+    Mimic,
+    Pose,
+    Robot,
+    SafetyController,
+    Sphere,
+    Transmission,
+    TransmissionJoint,
+    ValueIssue,
+    Vec3,
+    Visual,
+)
+from robotdesc.source import PROVENANCE_ATTR, Provenance, Span, decode_provenance
+
+log = logging.getLogger(__name__)
+
+_LXML_POSITION_SUFFIX = re.compile(r",? line \d+, column \d+$")
+_PROVENANCE_ATTRIBUTE = re.compile(
+    rb"""[ \t\r\n]+""" + PROVENANCE_ATTR.encode() + rb"""=(?:"[0-9:;*]*"|'[0-9:;*]*')""")
+
+_MARKUP = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>|<[A-Za-z_:][^>]*>", re.DOTALL)
+
+_WHITESPACE = re.compile(rb"[ \t\r\n]*")
+
+_ZERO: Vec3 = (0.0, 0.0, 0.0)
+
+
+def parse_urdf(data: bytes, path: str, files: tuple[str, ...] = ()) -> Robot:
+    """Parse a URDF document strictly into a `Robot`.
+
+    Args:
+        data: the document (UTF-8 or with an XML encoding declaration).
+        path: the file it came from, used in errors and (for plain URDF) in provenance.
+        files: the expansion's file table; when given, elements carry the private provenance
+            attribute (`robotdesc.source.PROVENANCE_ATTR`) indexing it.
+
+    Returns:
+        The robot, with unreadable values recorded in `Robot.value_issues`.
+
+    Raises:
+        XmlSyntaxError: the XML is malformed or declares a DOCTYPE.
+        InputError: the root element is not `<robot>`.
+    """
+    root = _parse_xml(data, path)
+    if root.tag != "robot":
+        raise InputError(f"the root element is <{_tag(root)}>, expected <robot>",
+                         Span(path, root.sourceline or 0))
+    return _RobotReader(path, files).robot(root)
+
+
+def strip_provenance(data: bytes) -> bytes:
+    """Return the document without the private provenance attribute, otherwise unchanged.
+
+    Only start tags are edited; comments, CDATA, processing instructions and text are
+    copied byte for byte.
+    """
+    marker = PROVENANCE_ATTR.encode()
+    if marker not in data:
+        return data
+
+    def clean(match: re.Match) -> bytes:
+        markup = match.group(0)
+        if markup[1:2] in (b"!", b"?") or marker not in markup:
+            return markup
+        return _PROVENANCE_ATTRIBUTE.sub(b"", markup)
+
+    return _MARKUP.sub(clean, data)
+
+
+def _parse_xml(data: bytes, path: str) -> etree._Element:
+    if isinstance(data, str):
+        data = data.encode("utf-8")
+    doctype_at = _doctype_offset(data)
+    if doctype_at >= 0:
+        line = data.count(b"\n", 0, doctype_at) + 1
+        raise XmlSyntaxError("a DOCTYPE is not allowed in a robot description "
+                             "(entities and DTDs are refused)", Span(path, line))
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, recover=False,
+                             load_dtd=False, huge_tree=False, remove_comments=True,
+                             remove_pis=True)
+    try:
+        root = etree.fromstring(data, parser)
+    except etree.XMLSyntaxError as error:
+        line, col = error.position if error.position else (error.lineno or 0, 0)
+        message = _LXML_POSITION_SUFFIX.sub("", error.msg or "malformed XML")
+        raise XmlSyntaxError(f"malformed XML: {message}", Span(path, line or 0, col or 0)) from None
+    if root.getroottree().docinfo.doctype:
+        raise XmlSyntaxError("a DOCTYPE is not allowed in a robot description "
+                             "(entities and DTDs are refused)", Span(path, 1))
+    return root
+
+
+def _doctype_offset(data: bytes) -> int:
+    """Offset of a DOCTYPE in the prolog, or -1.
+
+    A DOCTYPE may only follow an optional BOM, the XML declaration, comments, processing
+    instructions and whitespace. Refusing it before libxml2 reads it keeps entity tricks
+    (billion laughs, external entities) out entirely. Linear time.
+    """
+    at = 3 if data.startswith(b"\xef\xbb\xbf") else 0
+    size = len(data)
+    while at < size:
+        at = _WHITESPACE.match(data, at).end()
+        if data.startswith(b"<?", at):
+            end = data.find(b"?>", at + 2)
+            at = size if end < 0 else end + 2
+        elif data.startswith(b"<!--", at):
+            end = data.find(b"-->", at + 4)
+            at = size if end < 0 else end + 3
+        elif data.startswith(b"<!DOCTYPE", at):
+            return at
+        else:
+            return -1
+    return -1
+
+
+def _tag(element: etree._Element) -> str:
+    tag = element.tag
+    return tag.rpartition("}")[2] if isinstance(tag, str) else str(tag)
+
+
+def _children(element: etree._Element, tag: str) -> list[etree._Element]:
+    return [child for child in element if child.tag == tag]
+
+
+def _first(element: etree._Element, tag: str) -> etree._Element | None:
+    for child in element:
+        if child.tag == tag:
+            return child
+    return None
+
+
+def _firsts(element: etree._Element) -> dict[str, etree._Element]:
+    """The first child of each tag (URDF consumers read the first and ignore repeats)."""
+    index: dict[str, etree._Element] = {}
+    for child in element:
+        if child.tag not in index:
+            index[child.tag] = child
+    return index
+
+
+class _RobotReader:
+    """Walks the tree once; collects value issues; caches decoded provenance."""
+
+    def __init__(self, path: str, files: tuple[str, ...]) -> None:
+        self.path = path
+        self.files = files
+        self.issues: list[ValueIssue] = []
+        self._decoded: dict[str, Provenance] = {}
+        self._by_line: dict[int, Provenance] = {}
+        self._spans: dict[str, Span] = {}
+        self._chains: dict[str, tuple[Span, ...]] = {}
+
+    # -- provenance -------------------------------------------------------------------------
+
+    def where(self, element: etree._Element, inherited: Provenance | None) -> Provenance:
+        """The element's provenance: its own attribute, else the nearest ancestor's."""
+        if self.files:
+            value = element.get(PROVENANCE_ATTR)
+            if value is not None:
+                found = self._decoded.get(value)
+                if found is None:
+                    found = self._decode(value, element, inherited)
+                return found
+            if inherited is not None:
+                return inherited
+        line = element.sourceline or 0
+        found = self._by_line.get(line)
+        if found is None:
+            found = self._by_line[line] = Provenance(Span(self.path, line))
+        return found
+
+    def _decode(self, value: str, element: etree._Element,
+                inherited: Provenance | None) -> Provenance:
+        """Decode one attribute value (`robotdesc.source.decode_provenance`), with caches.
+
+        The elements of one macro body share their call chain, so the chain and each own
+        position are decoded once and reused.
+        """
+        own, _, calls = value.partition(";")
+        try:
+            span = self._spans.get(own)
+            if span is None:
+                span = self._spans[own] = decode_provenance(own, self.files).span
+            chain = self._chains.get(calls)
+            if chain is None:
+                if calls:
+                    head = decode_provenance(calls, self.files)
+                    chain = (head.span, *head.macro_stack)
+                else:
+                    chain = ()
+                self._chains[calls] = chain
+        except (ValueError, IndexError):
+            log.warning("ignoring malformed provenance %r on <%s>", value, _tag(element))
+            return inherited or Provenance(Span(self.path, element.sourceline or 0))
+        found = self._decoded[value] = Provenance(span, chain)
+        return found
+
+    # -- values -----------------------------------------------------------------------------
+
+    def issue(self, message: str, where: Provenance, element: str) -> None:
+        self.issues.append(ValueIssue(message, where, element))
+
+    def number(self, text: str | None, what: str, where: Provenance, owner: str,
+               default: float | None = None, required: bool = False) -> float | None:
+        """Read one number; a missing required one or an unreadable one is an issue."""
+        if text is None:
+            if required:
+                self.issue(f"{what} is missing (required)", where, owner)
+            return default
+        try:
+            value = float(text)
+        except ValueError:
+            value = None
+        if value is None or math.isnan(value) or "_" in text:
+            self.issue(f"{what}=\"{text}\" is not a number", where, owner)
+            return default
+        return value
+
+    def vector(self, text: str | None, size: int, what: str, where: Provenance, owner: str,
+               default: tuple | None = None, required: bool = False) -> tuple | None:
+        """Read `size` whitespace-separated numbers."""
+        if text is None:
+            if required:
+                self.issue(f"{what} is missing (required)", where, owner)
+            return default
+        try:
+            values = tuple(map(float, text.split()))
+        except ValueError:
+            values = ()
+        if (len(values) != size or "_" in text
+                or (("a" in text or "A" in text) and any(map(math.isnan, values)))):
+            self.issue(f"{what}=\"{text}\" is not {size} numbers", where, owner)
+            return default
+        return values
+
+    # -- elements ---------------------------------------------------------------------------
+
+    def robot(self, root: etree._Element) -> Robot:
+        where = self.where(root, None)
+        name = root.get("name")
+        if not name:
+            self.issue("<robot> has no name (required)", where, "robot")
+        links: list[Link] = []
+        joints: list[Joint] = []
+        materials: list[Material] = []
+        transmissions: list[Transmission] = []
+        gazebo: list[GazeboBlock] = []
+        for child in root:
+            tag = child.tag
+            if tag == "link":
+                links.append(self.link(child, where))
+            elif tag == "joint":
+                joints.append(self.joint(child, where))
+            elif tag == "material":
+                materials.append(self.material(child, where, "material"))
+            elif tag == "transmission":
+                transmissions.append(self.transmission(child, where))
+            elif tag == "gazebo":
+                gazebo.append(self.gazebo(child, where))
+        return Robot(name=name or "", links=tuple(links), joints=tuple(joints),
+                     materials=tuple(materials), transmissions=tuple(transmissions),
+                     gazebo=tuple(gazebo), value_issues=tuple(self.issues), source=self.path,
+                     where=where)
+
+    def pose(self, element: etree._Element | None, parent: Provenance, owner: str) -> Pose:
+        if element is None:
+            return Pose()
+        where = self.where(element, parent)
+        xyz = self.vector(element.get("xyz"), 3, "<origin> xyz", where, owner, _ZERO)
+        rpy = self.vector(element.get("rpy"), 3, "<origin> rpy", where, owner, _ZERO)
+        return Pose(xyz, rpy, where)
+
+    def link(self, element: etree._Element, parent: Provenance) -> Link:
+        where = self.where(element, parent)
+        name = element.get("name") or ""
+        owner = f"link:{name}"
+        if not name:
+            self.issue("<link> has no name (required)", where, owner)
+        inertial_element = None
+        visual_elements: list[etree._Element] = []
+        collision_elements: list[etree._Element] = []
+        for child in element:
+            tag = child.tag
+            if tag == "visual":
+                visual_elements.append(child)
+            elif tag == "collision":
+                collision_elements.append(child)
+            elif tag == "inertial" and inertial_element is None:
+                inertial_element = child
+        inertial = (self.inertial(inertial_element, where, owner)
+                    if inertial_element is not None else None)
+        visuals = tuple(self.visual(v, where, f"{owner}/visual[{i}]")
+                        for i, v in enumerate(visual_elements))
+        collisions = tuple(self.collision(c, where, f"{owner}/collision[{i}]")
+                           for i, c in enumerate(collision_elements))
+        return Link(name, inertial, visuals, collisions, where)
+
+    def inertial(self, element: etree._Element, parent: Provenance, owner: str) -> Inertial:
+        where = self.where(element, parent)
+        kids = _firsts(element)
+        origin = self.pose(kids.get("origin"), where, owner)
+        mass_element = kids.get("mass")
+        mass = None
+        if mass_element is None:
+            self.issue("<inertial> has no <mass> (required)", where, owner)
+        else:
+            mass = self.number(mass_element.get("value"), "<mass> value",
+                               self.where(mass_element, where), owner, required=True)
+        inertia_element = kids.get("inertia")
+        inertia = None
+        if inertia_element is None:
+            self.issue("<inertial> has no <inertia> (required)", where, owner)
+        else:
+            inertia = self.inertia(inertia_element, where, owner)
+        return Inertial(origin, mass, inertia, where)
+
+    def inertia(self, element: etree._Element, parent: Provenance, owner: str) -> Inertia | None:
+        where = self.where(element, parent)
+        values = [self.number(element.get(key), f"<inertia> {key}", where, owner, required=True)
+                  for key in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")]
+        if any(value is None for value in values):
+            return None
+        return Inertia(*values, where=where)
+
+    def visual(self, element: etree._Element, parent: Provenance, owner: str) -> Visual:
+        where = self.where(element, parent)
+        kids = _firsts(element)
+        origin = self.pose(kids.get("origin"), where, owner)
+        geometry = self.geometry(kids.get("geometry"), where, owner)
+        material_element = kids.get("material")
+        material = (self.material(material_element, where, owner)
+                    if material_element is not None else None)
+        return Visual(element.get("name"), origin, geometry, material, where)
+
+    def collision(self, element: etree._Element, parent: Provenance, owner: str) -> Collision:
+        where = self.where(element, parent)
+        kids = _firsts(element)
+        origin = self.pose(kids.get("origin"), where, owner)
+        geometry = self.geometry(kids.get("geometry"), where, owner)
+        return Collision(element.get("name"), origin, geometry, where)
+
+    def geometry(self, element: etree._Element | None, parent: Provenance,
+                 owner: str) -> Geometry | None:
+        if element is None:
+            self.issue("<geometry> is missing (required)", parent, owner)
+            return None
+        where = self.where(element, parent)
+        shape = next((child for child in element if isinstance(child.tag, str)), None)
+        if shape is None:
+            self.issue("<geometry> has no shape (box, cylinder, sphere or mesh)", where, owner)
+            return None
+        reader = _SHAPES.get(shape.tag)
+        if reader is None:
+            self.issue(f"<geometry> has an unknown shape <{_tag(shape)}>", where, owner)
+            return None
+        return reader(self, shape, self.where(shape, where), owner)
+
+    def material(self, element: etree._Element, parent: Provenance, owner: str) -> Material:
+        where = self.where(element, parent)
+        name = element.get("name") or ""
+        if owner == "material":
+            owner = f"material:{name}"
+            if not name:
+                self.issue("<material> has no name (required)", where, owner)
+        color = None
+        color_element = _first(element, "color")
+        if color_element is not None:
+            color = self.vector(color_element.get("rgba"), 4, "<color> rgba",
+                                self.where(color_element, where), owner, required=True)
+        texture_element = _first(element, "texture")
+        texture = texture_element.get("filename") if texture_element is not None else None
+        return Material(name, color, texture, where)
+
+    def joint(self, element: etree._Element, parent: Provenance) -> Joint:
+        where = self.where(element, parent)
+        kids = _firsts(element)
+        name = element.get("name") or ""
+        owner = f"joint:{name}"
+        if not name:
+            self.issue("<joint> has no name (required)", where, owner)
+        origin = self.pose(kids.get("origin"), where, owner)
+        axis, axis_where = None, None
+        axis_element = kids.get("axis")
+        if axis_element is not None:
+            axis_where = self.where(axis_element, where)
+            axis = self.vector(axis_element.get("xyz"), 3, "<axis> xyz", axis_where, owner,
+                               (1.0, 0.0, 0.0))
+        return Joint(
+            name=name, type=element.get("type") or "",
+            parent=self.link_reference(kids.get("parent")),
+            child=self.link_reference(kids.get("child")),
+            origin=origin, axis=axis,
+            limit=self.optional(kids, "limit", where, owner, self.limit),
+            dynamics=self.optional(kids, "dynamics", where, owner, self.dynamics),
+            mimic=self.optional(kids, "mimic", where, owner, self.mimic),
+            safety_controller=self.optional(kids, "safety_controller", where, owner,
+                                            self.safety_controller),
+            calibration=self.optional(kids, "calibration", where, owner, self.calibration),
+            where=where, axis_where=axis_where)
+
+    @staticmethod
+    def link_reference(element: etree._Element | None) -> str:
+        return (element.get("link") or "") if element is not None else ""
+
+    def optional(self, kids: dict[str, etree._Element], tag: str, parent: Provenance,
+                 owner: str, read: Callable[[etree._Element, Provenance, str], object]):
+        child = kids.get(tag)
+        return read(child, self.where(child, parent), owner) if child is not None else None
+
+    def limit(self, element: etree._Element, where: Provenance, owner: str) -> JointLimit:
+        read = lambda key, required=False: self.number(
+            element.get(key), f"<limit> {key}", where, owner, required=required)
+        return JointLimit(read("lower"), read("upper"), read("effort", True),
+                          read("velocity", True), where)
+
+    def dynamics(self, element: etree._Element, where: Provenance, owner: str) -> Dynamics:
+        return Dynamics(self.number(element.get("damping"), "<dynamics> damping", where, owner),
+                        self.number(element.get("friction"), "<dynamics> friction", where, owner),
+                        where)
+
+    def mimic(self, element: etree._Element, where: Provenance, owner: str) -> Mimic:
+        target = element.get("joint") or ""
+        if not target:
+            self.issue("<mimic> joint is missing (required)", where, owner)
+        # Absent: URDF's defaults; present but unreadable: None (and an issue).
+        text = element.get("multiplier")
+        multiplier = self.number(text, "<mimic> multiplier", where, owner,
+                                 1.0 if text is None else None)
+        text = element.get("offset")
+        offset = self.number(text, "<mimic> offset", where, owner, 0.0 if text is None else None)
+        return Mimic(target, multiplier, offset, where)
+
+    def safety_controller(self, element: etree._Element, where: Provenance,
+                          owner: str) -> SafetyController:
+        read = lambda key: self.number(
+            element.get(key), f"<safety_controller> {key}", where, owner)
+        return SafetyController(read("soft_lower_limit"), read("soft_upper_limit"),
+                                read("k_position"), read("k_velocity"), where)
+
+    def calibration(self, element: etree._Element, where: Provenance, owner: str) -> Calibration:
+        return Calibration(self.number(element.get("rising"), "<calibration> rising", where, owner),
+                           self.number(element.get("falling"), "<calibration> falling", where,
+                                       owner),
+                           where)
+
+    def transmission(self, element: etree._Element, parent: Provenance) -> Transmission:
+        where = self.where(element, parent)
+        name = element.get("name") or ""
+        owner = f"transmission:{name}"
+        type_element = _first(element, "type")
+        kind = element.get("type") or (_text(type_element) if type_element is not None else "")
+        joints = tuple(TransmissionJoint(j.get("name") or "", _interfaces(j), self.where(j, where))
+                       for j in _children(element, "joint"))
+        shared = _first(element, "mechanicalReduction")
+        shared_reduction = (self.number(_text(shared), "<mechanicalReduction>",
+                                         self.where(shared, where), owner)
+                            if shared is not None else None)
+        actuators = []
+        for actuator in _children(element, "actuator"):
+            actuator_where = self.where(actuator, where)
+            own = _first(actuator, "mechanicalReduction")
+            reduction = (self.number(_text(own), "<mechanicalReduction>",
+                                     self.where(own, actuator_where), owner)
+                         if own is not None else shared_reduction)
+            actuators.append(Actuator(actuator.get("name") or "", _interfaces(actuator),
+                                      reduction, actuator_where))
+        return Transmission(name, kind, joints, tuple(actuators), where)
+
+    def gazebo(self, element: etree._Element, parent: Provenance) -> GazeboBlock:
+        where = self.where(element, parent)
+        tags = tuple(_tag(child) for child in element if isinstance(child.tag, str))
+        plugins = tuple(plugin.get("filename") or "" for plugin in element.iter("plugin"))
+        return GazeboBlock(element.get("reference"), tags, plugins, where)
+
+    # -- shapes -----------------------------------------------------------------------------
+
+    def box(self, element, where, owner) -> Box | None:
+        size = self.vector(element.get("size"), 3, "<box> size", where, owner, required=True)
+        return Box(size, where) if size is not None else None
+
+    def required(self, element, key: str, where, owner) -> float | None:
+        return self.number(element.get(key), f"<{_tag(element)}> {key}", where, owner,
+                           required=True)
+
+    def cylinder(self, element, where, owner) -> Cylinder | None:
+        radius = self.required(element, "radius", where, owner)
+        length = self.required(element, "length", where, owner)
+        return Cylinder(radius, length, where) if None not in (radius, length) else None
+
+    def capsule(self, element, where, owner) -> Capsule | None:
+        radius = self.required(element, "radius", where, owner)
+        length = self.required(element, "length", where, owner)
+        return Capsule(radius, length, where) if None not in (radius, length) else None
+
+    def sphere(self, element, where, owner) -> Sphere | None:
+        radius = self.required(element, "radius", where, owner)
+        return Sphere(radius, where) if radius is not None else None
+
+    def mesh(self, element, where, owner) -> MeshRef | None:
+        filename = element.get("filename")
+        if not filename:
+            self.issue("<mesh> filename is missing (required)", where, owner)
+            return None
+        scale = self.vector(element.get("scale"), 3, "<mesh> scale", where, owner, (1.0, 1.0, 1.0))
+        return MeshRef(filename, scale, where)
+
+
+_SHAPES = {"box": _RobotReader.box, "cylinder": _RobotReader.cylinder,
+           "sphere": _RobotReader.sphere, "capsule": _RobotReader.capsule,
+           "mesh": _RobotReader.mesh}
+
+
+def _text(element: etree._Element) -> str:
+    return (element.text or "").strip()
+
+
+def _interfaces(element: etree._Element) -> tuple[str, ...]:
+    return tuple(_text(child) for child in element if child.tag == "hardwareInterface")

@@ -1,0 +1,125 @@
+"""Machine-readable report: a stable, versioned JSON document (see docs/json-format.md).
+
+The shape only grows within a schema version: new keys may be added, none are renamed or
+removed without bumping `schema_version`.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from typing import Any, Sequence
+
+from robotdesc.diagnostics import Diagnostic, Severity
+from robotdesc.source import Span
+
+SCHEMA_VERSION = 1
+
+_SPAN = {"type": "object", "required": ["file", "line"], "additionalProperties": False,
+         "properties": {"file": {"type": "string"},
+                        "line": {"type": ["integer", "null"], "minimum": 1}}}
+_POSITION = {"file": {"type": ["string", "null"]},
+             "line": {"type": ["integer", "null"], "minimum": 1},
+             "column": {"type": ["integer", "null"], "minimum": 1},
+             "macro_stack": {"type": "array", "items": _SPAN},
+             "target": {"type": "string"}}
+
+#: JSON Schema (draft 2020-12) of the report; tests validate the output against it.
+JSON_SCHEMA: dict[str, Any] = {
+    "$schema": "https://json-schema.org/draft/2020-12/schema",
+    "title": "robotdesc lint report",
+    "type": "object",
+    "required": ["schema_version", "tool", "summary", "diagnostics", "failures"],
+    "properties": {
+        "schema_version": {"const": SCHEMA_VERSION},
+        "tool": {"type": "object", "required": ["name", "version"],
+                 "properties": {"name": {"const": "robotdesc"}, "version": {"type": "string"}}},
+        "summary": {
+            "type": "object",
+            "required": ["files_checked", "files_not_checked", "error", "warning", "info"],
+            "properties": {key: {"type": "integer", "minimum": 0} for key in
+                           ("files_checked", "files_not_checked", "error", "warning", "info",
+                            "suppressed")},
+        },
+        "diagnostics": {"type": "array", "items": {
+            "type": "object",
+            "required": ["code", "name", "severity", "message", "file", "line", "column",
+                         "element", "macro_stack", "fix", "target"],
+            "properties": {"code": {"type": "string", "pattern": "^[A-Z]+[0-9]{3}$"},
+                           "name": {"type": "string"},
+                           "severity": {"enum": ["error", "warning", "info"]},
+                           "message": {"type": "string"},
+                           "element": {"type": "string"},
+                           "fix": {"type": ["string", "null"]},
+                           **_POSITION},
+        }},
+        "failures": {"type": "array", "items": {
+            "type": "object",
+            "required": ["kind", "message", "file", "line", "column", "macro_stack", "target"],
+            "properties": {"kind": {"type": "string"}, "message": {"type": "string"},
+                           **_POSITION},
+        }},
+    },
+}
+
+
+def diagnostic_dict(diagnostic: Diagnostic) -> dict[str, Any]:
+    """One diagnostic as a JSON-ready dict (unknown line/column are null)."""
+    span = diagnostic.where.span if diagnostic.where else None
+    stack = diagnostic.where.macro_stack if diagnostic.where else ()
+    return {
+        "code": diagnostic.code,
+        "name": diagnostic.name,
+        "severity": str(diagnostic.severity),
+        "message": diagnostic.message,
+        **_position(span),
+        "element": diagnostic.element,
+        "macro_stack": [_span_dict(site) for site in stack],
+        "fix": diagnostic.fix,
+        "target": diagnostic.target,
+    }
+
+
+def failure_dict(failure: Any) -> dict[str, Any]:
+    """A file that could not be checked (`LintFailure`) as a JSON-ready dict."""
+    error = failure.error
+    return {
+        "kind": type(error).__name__,
+        "message": getattr(error, "message", str(error)),
+        **_position(getattr(error, "span", None)),
+        "macro_stack": [_span_dict(site) for site in getattr(error, "call_stack", ())],
+        "target": os.path.abspath(failure.target),
+    }
+
+
+def report_dict(results: Sequence[Any], failures: Sequence[Any] = ()) -> dict[str, Any]:
+    """The whole report for `LintResult`s and `LintFailure`s."""
+    from robotdesc import __version__
+
+    diagnostics = [d for result in results for d in result.diagnostics]
+    summary = {"files_checked": len(results), "files_not_checked": len(failures)}
+    summary.update({str(level): sum(d.severity == level for d in diagnostics)
+                    for level in sorted(Severity, reverse=True)})
+    summary["suppressed"] = sum(getattr(result, "suppressed", 0) for result in results)
+    return {
+        "schema_version": SCHEMA_VERSION,
+        "tool": {"name": "robotdesc", "version": __version__},
+        "summary": summary,
+        "diagnostics": [diagnostic_dict(d) for d in diagnostics],
+        "failures": [failure_dict(f) for f in failures],
+    }
+
+
+def render_json(results: Sequence[Any], failures: Sequence[Any] = ()) -> str:
+    """The report as indented JSON text, ending with a newline."""
+    return json.dumps(report_dict(results, failures), indent=2, ensure_ascii=False) + "\n"
+
+
+def _position(span: Span | None) -> dict[str, Any]:
+    return {"file": os.path.abspath(span.path) if span else None,
+            "line": (span.line or None) if span else None,
+            "column": (span.col or None) if span else None}
+
+
+def _span_dict(span: Span) -> dict[str, Any]:
+    return {"file": os.path.abspath(span.path), "line": span.line or None}

@@ -1,0 +1,201 @@
+"""Human-readable report, in the manner of ruff and rustc.
+
+    urdf/arm.urdf.xacro:12:5: J102 [error] revolute joint 'elbow' has no <limit>
+       |
+    12 |     <joint name="${prefix}elbow" type="revolute">
+       |     ^^^^^^
+       = in macro called from urdf/robot.urdf.xacro:40
+       = fix: <limit lower="-1.57" upper="1.57" effort="10" velocity="1"/>
+
+    Found 1 error in 1 file.
+
+Colour (via rich, imported only when used) is for terminals only.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from typing import Any, Callable, Iterable, Sequence, TextIO
+
+from robotdesc.diagnostics import Diagnostic, Severity
+from robotdesc.errors import InputError
+from robotdesc.source import Span
+
+Segment = tuple[str, str]  # (text, rich style; "" for none)
+Line = list[Segment]
+
+_SEVERITY_STYLE = {Severity.ERROR: "bold red", Severity.WARNING: "bold yellow",
+                   Severity.INFO: "bold blue"}
+_TAG_START = re.compile(r"</?[A-Za-z_][\w:.-]*")
+
+
+class SourceCache:
+    """Reads source lines once per file; a file that cannot be read has no lines."""
+
+    def __init__(self) -> None:
+        self._lines: dict[str, list[str]] = {}
+
+    def line(self, path: str, number: int) -> str | None:
+        if path not in self._lines:
+            try:
+                with open(path, encoding="utf-8", errors="replace") as handle:
+                    self._lines[path] = handle.read().splitlines()
+            except OSError:
+                self._lines[path] = []
+        lines = self._lines[path]
+        return lines[number - 1] if 0 < number <= len(lines) else None
+
+
+def display_path(path: str, cwd: str | None = None) -> str:
+    """`path` relative to the working directory when it lies under it, else as is."""
+    base = cwd or os.getcwd()
+    absolute = os.path.abspath(path)
+    try:
+        relative = os.path.relpath(absolute, base)
+    except ValueError:  # another drive (Windows)
+        return absolute
+    return absolute if relative.startswith("..") else relative
+
+
+def render_lines(results: Sequence, failures: Sequence = (), *, cwd: str | None = None,
+                 show_source: bool = True) -> list[Line]:
+    """The report as styled lines.
+
+    Args:
+        results: `LintResult`s (each with `diagnostics`).
+        failures: `LintFailure`s (files that could not be checked); counted in the summary
+            only, see `render_failure` for their text.
+        cwd: the directory paths are shown relative to (default: the working directory).
+        show_source: include the source line and caret under each diagnostic.
+    """
+    cache = SourceCache()
+    show = lambda path: display_path(path, cwd)  # noqa: E731
+    lines: list[Line] = []
+    for result in results:
+        for diagnostic in result.diagnostics:
+            lines.extend(_diagnostic_lines(diagnostic, show, cache, show_source))
+            lines.append([])
+    lines.append(summary_line(results, failures))
+    return lines
+
+
+def render_text(results: Sequence, failures: Sequence = (), *, cwd: str | None = None,
+                show_source: bool = True) -> str:
+    """The report as plain text (no colour), ending with a newline."""
+    return "".join("".join(text for text, _ in line) + "\n"
+                   for line in render_lines(results, failures, cwd=cwd,
+                                            show_source=show_source))
+
+
+def write_text(stream: TextIO, results: Sequence, failures: Sequence = (), *,
+               colour: bool = False, cwd: str | None = None) -> None:
+    """Write the report to `stream`, coloured with rich when `colour` is set."""
+    lines = render_lines(results, failures, cwd=cwd)
+    if not colour:
+        stream.write("".join("".join(text for text, _ in line) + "\n" for line in lines))
+        return
+    from rich.console import Console
+    from rich.text import Text
+
+    console = Console(file=stream, force_terminal=True, highlight=False, soft_wrap=True,
+                      emoji=False, markup=False)
+    for line in lines:
+        console.print(Text.assemble(*((text, style or None) for text, style in line)))
+
+
+def render_failure(failure: Any, *, cwd: str | None = None, show_source: bool = True) -> str:
+    """A file that could not be checked: `path:line:col: error: message`, the source line
+    and the macro call chain (plain text, ending with a newline)."""
+    show = lambda path: display_path(path, cwd)  # noqa: E731
+    lines = _failure_lines(failure.error, failure.target, show, SourceCache(), show_source)
+    return "".join("".join(text for text, _ in line) + "\n" for line in lines)
+
+
+def summary_line(results: Sequence, failures: Sequence = ()) -> Line:
+    """"Found 3 errors, 1 warning in 2 files." / "All checks passed (2 files)."."""
+    totals = {level: 0 for level in sorted(Severity, reverse=True)}
+    files = set()
+    for result in results:
+        for diagnostic in result.diagnostics:
+            totals[diagnostic.severity] += 1
+            files.add(diagnostic.where.span.path if diagnostic.where else diagnostic.target)
+    parts = [_plural(n, str(level)) for level, n in totals.items() if n]
+    line: Line
+    if parts:
+        line = [(f"Found {', '.join(parts)} in {_plural(len(files), 'file')}.", "bold")]
+    elif results:
+        line = [(f"All checks passed ({_plural(len(results), 'file')} checked).", "bold green")]
+    else:
+        line = []
+    if failures:
+        text = f"{_plural(len(failures), 'file')} could not be checked."
+        line = line + [(" " if line else "", ""), (text, "bold red")]
+    return line
+
+
+def _plural(count: int, noun: str) -> str:
+    return f"{count} {noun}" if count == 1 else f"{count} {noun}s"
+
+
+def _location(span: Span | None, show: Callable[[str], str], fallback: str) -> str:
+    if span is None:
+        return show(fallback)
+    return str(Span(show(span.path), span.line, span.col))
+
+
+def _diagnostic_lines(diagnostic: Diagnostic, show: Callable[[str], str], cache: SourceCache,
+                      show_source: bool) -> list[Line]:
+    span = diagnostic.where.span if diagnostic.where else None
+    head: Line = [(_location(span, show, diagnostic.target), "bold"), (": ", ""),
+                  (diagnostic.code, "bold magenta"), (" ", ""),
+                  (f"[{diagnostic.severity}]", _SEVERITY_STYLE[diagnostic.severity]),
+                  (f" {diagnostic.message}", "")]
+    lines = [head]
+    stack = diagnostic.where.macro_stack if diagnostic.where else ()
+    lines.extend(_context_lines(span, stack, show, cache, show_source))
+    if diagnostic.fix:
+        gutter = " " * (len(str(span.line)) if span and span.line else 1)
+        fix_lines = diagnostic.fix.strip("\n").splitlines()
+        lines.append([(f"{gutter} = ", "blue"), ("fix:", "bold green")])
+        lines.extend([(f"{gutter}   ", "blue"), (text, "green")] for text in fix_lines)
+    return lines
+
+
+def _failure_lines(error: InputError, target: str, show: Callable[[str], str],
+                   cache: SourceCache, show_source: bool) -> list[Line]:
+    span = getattr(error, "span", None)
+    message = getattr(error, "message", str(error))
+    head: Line = [(_location(span, show, target), "bold"), (": ", ""), ("error", "bold red"),
+                  (f": {message}", "")]
+    stack = getattr(error, "call_stack", ())
+    return [head, *_context_lines(span, stack, show, cache, show_source)]
+
+
+def _context_lines(span: Span | None, stack: Iterable[Span], show: Callable[[str], str],
+                   cache: SourceCache, show_source: bool) -> list[Line]:
+    """The source line with a caret under the element, then the macro call chain."""
+    lines: list[Line] = []
+    source = cache.line(span.path, span.line) if (span and span.line and show_source) else None
+    width = len(str(span.line)) if span and span.line else 1
+    gutter = " " * width
+    if source is not None:
+        start, length = _underline(source, span.col)
+        lines.append([(f"{gutter} |", "blue")])
+        lines.append([(f"{span.line} | ", "blue"), (source.rstrip().expandtabs(4), "")])
+        lines.append([(f"{gutter} | ", "blue"), (" " * start, ""), ("^" * length, "bold red")])
+    for site in stack:
+        lines.append([(f"{gutter} = ", "blue"),
+                      (f"in macro called from {_location(site, show, site.path)}", "")])
+    return lines
+
+
+def _underline(source: str, col: int) -> tuple[int, int]:
+    """Caret position (0-based display column, length) under the tag at `col` (1-based).
+
+    Without a column, the first non-blank character. Tabs count as 4 display columns.
+    """
+    start = col - 1 if 0 < col <= len(source) else len(source) - len(source.lstrip())
+    tag = _TAG_START.match(source, start)
+    length = (tag.end() - start) if tag else 1
+    return len(source[:start].expandtabs(4)), length

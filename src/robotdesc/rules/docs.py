@@ -1,0 +1,105 @@
+"""Render the rule reference (docs/rules.md) from the registry.
+
+Regenerate with `python -m robotdesc.rules.docs > docs/rules.md`; a test keeps it current.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import inspect
+import sys
+
+from robotdesc.rules.registry import Rule, all_rules
+
+#: Lines of a rule docstring that become section headings.
+SECTION_HEADINGS = ("Why is this bad?", "Example")
+
+REGENERATE = "python -m robotdesc.rules.docs > docs/rules.md"
+
+
+def render_rules_markdown() -> str:
+    """The whole rule reference as Markdown: an index table, then one section per rule."""
+    rules = all_rules()
+    parts = [
+        "# Rules\n",
+        f"<!-- Generated from the rule registry by `{REGENERATE}`. Do not edit by hand. -->\n",
+        ("Each rule has a stable code and a kebab-case name that names the problem. A finding "
+        "can be suppressed on its element with `<!-- robotdesc: ignore CODE -->` "
+        "(see RD001).\n"),
+        "| Code | Name | Family | Default severity |",
+        "|------|------|--------|------------------|",
+    ]
+    parts += [f"| [{r.code}](#{_anchor(r)}) | {r.name} | {r.family} | {r.severity} |"
+              for r in rules]
+    parts.append("")
+    for rule_ in rules:
+        parts.append(_render_rule(rule_))
+    return "\n".join(parts).rstrip("\n") + "\n"
+
+
+def _anchor(rule_: Rule) -> str:
+    return f"{rule_.code}-{rule_.name}".lower()
+
+
+def _render_rule(rule_: Rule) -> str:
+    facts = [f"Family: {rule_.family}", f"Default severity: {rule_.severity}"]
+    if rule_.needs:
+        facts.append("Needs: " + ", ".join(sorted(rule_.needs)))
+    lines = [f"## {rule_.code} {rule_.name}", "", " · ".join(facts), ""]
+    for line in rule_.doc.splitlines():
+        if line.strip() in SECTION_HEADINGS:
+            lines += [f"### {line.strip()}", ""]
+        else:
+            lines.append(line)
+    lines.append("")
+    options = _render_options(rule_)
+    if options:
+        lines += ["### Options", "", *options, ""]
+    return "\n".join(lines)
+
+
+def _render_options(rule_: Rule) -> list[str]:
+    fields = rule_.option_fields()
+    if not fields:
+        return []
+    described = _attribute_descriptions(rule_.options)
+    rows = ["| Option | Type | Default | Description |",
+            "|--------|------|---------|-------------|"]
+    for field in fields:
+        default = field.default if field.default is not dataclasses.MISSING else "(required)"
+        kind = field.type if isinstance(field.type, str) else getattr(field.type, "__name__", "")
+        rows.append(f"| `{field.name}` | {kind} | `{default!r}` | "
+                    f"{described.get(field.name, '')} |")
+    return rows
+
+
+def _attribute_descriptions(options: type) -> dict[str, str]:
+    """Parse the `Attributes:` section of an options dataclass's Google-style docstring."""
+    doc = inspect.cleandoc(options.__doc__ or "")
+    described: dict[str, str] = {}
+    current = None
+    inside = False
+    for line in doc.splitlines():
+        if line.strip() == "Attributes:":
+            inside = True
+            continue
+        if not inside or not line.strip():
+            continue
+        if not line.startswith(" "):
+            break
+        name, colon, text = line.strip().partition(":")
+        if colon and line.startswith("    ") and not line.startswith("     ") and " " not in name:
+            current = name
+            described[name] = text.strip()
+        elif current:
+            described[current] += " " + line.strip()
+    return described
+
+
+def main() -> None:
+    """Write the rule reference to stdout."""
+    sys.stdout.write(render_rules_markdown())
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,81 @@
+"""Bad input is refused with its file and line, and nothing escapes the sandbox."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+from robotdesc import errors
+from robotdesc.expansion import ExpandOptions, expand_file
+
+BAD = Path(__file__).parent / "fixtures" / "bad_pkg" / "urdf"
+
+CASES = [
+    # file, error type, line, words in the message
+    ("malformed.urdf.xacro", errors.XmlSyntaxError, 4, "mismatched tag"),
+    ("truncated.urdf.xacro", errors.XmlSyntaxError, 4, "unclosed token"),
+    ("billion_laughs.urdf.xacro", errors.XmlSyntaxError, 2, "DOCTYPE"),
+    ("external_entity.urdf.xacro", errors.XmlSyntaxError, 2, "DOCTYPE"),
+    ("escape_os.urdf.xacro", errors.SandboxViolation, 9, "os.system"),
+    ("eval_os.urdf.xacro", errors.SandboxViolation, 6, "os.system"),
+    ("recurse_forever.urdf.xacro", errors.LimitExceeded, 5, "nested deeper"),
+    ("include_self.urdf.xacro", errors.ExpansionError, 4, "include cycle"),
+    ("huge_string.urdf.xacro", errors.LimitExceeded, 4, "memory limit"),
+    ("undefined_property.urdf.xacro", errors.ExpansionError, 6, "'height' is not defined"),
+    ("unknown_package.urdf.xacro", errors.ExpansionError, 4, "unknown package 'no_such_package_anywhere'"),
+    ("escape_include.urdf.xacro", errors.SandboxViolation, 4, "escapes the package root"),
+]
+
+
+@pytest.mark.parametrize("name, error, line, words", CASES, ids=[c[0] for c in CASES])
+def test_bad_input_is_refused_at_its_line(name, error, line, words, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(error) as caught:
+        expand_file(BAD / name, options=ExpandOptions(use_cache=False, memory_mb=1024))
+    assert caught.value.span is not None
+    assert caught.value.span.path == str(BAD / name)
+    assert caught.value.span.line == line
+    assert words in caught.value.message
+    assert caught.value.exit_code == 2
+    assert not (tmp_path / "ESCAPE_MARKER").exists()
+
+
+def test_recursion_error_names_a_bounded_call_chain():
+    with pytest.raises(errors.LimitExceeded) as caught:
+        expand_file(BAD / "recurse_forever.urdf.xacro", options=ExpandOptions(use_cache=False))
+    chain = caught.value.call_stack
+    assert 2 <= len(chain) <= 12
+    assert chain[-1].line == 7  # the outermost call, in the robot body
+
+
+def test_trusted_mode_lifts_the_package_root_limit():
+    expanded = expand_file(BAD / "escape_include.urdf.xacro",
+                           options=ExpandOptions(use_cache=False, trusted=True))
+    assert b'name="secret"' in expanded.xml
+
+
+def test_wall_clock_limit_stops_a_slow_expansion():
+    with pytest.raises(errors.LimitExceeded) as caught:
+        expand_file(BAD / "recurse_forever.urdf.xacro",
+                    options=ExpandOptions(use_cache=False, timeout_s=0.5, max_macro_depth=10**6))
+    assert "0.5 s" in caught.value.message or "limit" in caught.value.message
+
+
+def test_missing_file_is_an_input_error(tmp_path):
+    with pytest.raises(errors.InputError) as caught:
+        expand_file(tmp_path / "nope.urdf.xacro")
+    assert "no such file" in caught.value.message
+
+
+def test_the_worker_environment_is_clean(tmp_path, monkeypatch):
+    monkeypatch.setenv("ROBOTDESC_SECRET_TOKEN", "hunter2")
+    source = tmp_path / "env.urdf.xacro"
+    source.write_text('<robot name="e" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                      '<link name="$(env ROBOTDESC_SECRET_TOKEN)"/></robot>')
+    with pytest.raises(errors.ExpansionError) as caught:
+        expand_file(source, options=ExpandOptions(use_cache=False))
+    assert "allowlist" in caught.value.message
+    assert "hunter2" not in str(caught.value)
+    assert os.environ["ROBOTDESC_SECRET_TOKEN"] == "hunter2"

@@ -1,0 +1,1 @@
+"""Tests of robotdesc.mesh (a package so that test module names stay unique)."""

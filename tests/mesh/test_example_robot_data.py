@@ -1,0 +1,38 @@
+"""Every mesh of example-robot-data loads and summarizes without a crash."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from robotdesc.mesh.load import FORMATS
+from robotdesc.mesh.summary import MassMethod, analyze_mesh_file
+from robotdesc.mesh.validate import MeshError
+
+
+def _meshes(root):
+    return sorted(p for p in root.rglob("*") if p.suffix.lower().lstrip(".") in FORMATS)
+
+
+@pytest.mark.slow
+def test_every_mesh_summarizes_or_is_a_mesh_error(robots_dir):
+    failures, methods = [], {}
+    for path in _meshes(robots_dir):
+        try:
+            summary = analyze_mesh_file(path)
+        except MeshError as error:
+            failures.append(str(error))
+            continue
+        methods[summary.method] = methods.get(summary.method, 0) + 1
+        if summary.properties is not None:
+            assert summary.properties.mass > 0 and not math.isnan(summary.properties.mass)
+    # the one known bad file: a scene that places none of its geometries
+    assert len(failures) == 1 and "anymal_foot.dae" in failures[0]
+    assert methods[MassMethod.EXACT] > 400
+
+
+def test_known_bad_collada_is_a_mesh_error(robots_dir):
+    with pytest.raises(MeshError) as caught:
+        analyze_mesh_file(robots_dir / "anymal_b_simple_description/meshes/foot/anymal_foot.dae")
+    assert "places none of the 1 geometries" in str(caught.value)

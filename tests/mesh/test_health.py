@@ -1,0 +1,62 @@
+"""Edge counts: closed, open, misoriented, non-manifold and degenerate surfaces."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from robotdesc.mesh.health import hole_caps, merge_vertices, mesh_health, topology
+from robotdesc.mesh.mass import volume_integrals
+
+from .builders import box_triangles
+
+
+def test_closed_box():
+    health = mesh_health(box_triangles())
+    assert health.watertight and health.consistent_winding and health.encloses_volume
+    assert (health.triangles, health.vertices, health.degenerate_faces) == (12, 8, 0)
+
+
+def test_open_box():
+    health = mesh_health(box_triangles()[2:])  # one side removed
+    assert not health.watertight and not health.encloses_volume
+    assert health.boundary_edges == 4 and health.hole_loops == 1
+    assert health.consistent_winding
+
+
+def test_one_flipped_face():
+    soup = box_triangles()
+    soup[5] = soup[5][::-1]
+    health = mesh_health(soup)
+    assert health.watertight and not health.consistent_winding
+    assert health.misoriented_edges == 3 and not health.encloses_volume
+
+
+def test_two_boxes_touching_along_an_edge_still_enclose_volume():
+    soup = np.concatenate([box_triangles((1, 1, 1)), box_triangles((1, 1, 1), center=(1, 1, 0))])
+    health = mesh_health(soup)
+    assert health.nonmanifold_edges == 1 and not health.watertight
+    assert health.misoriented_edges == 0 and health.encloses_volume
+
+
+def test_degenerate_faces():
+    soup = np.concatenate([box_triangles(), [[[0, 0, 0], [0, 0, 0], [1, 1, 1]],
+                                             [[0, 0, 0], [1, 1, 1], [2, 2, 2]]]])
+    assert mesh_health(soup).degenerate_faces == 2
+
+
+def test_merge_treats_negative_zero_as_zero():
+    soup = box_triangles(center=(0.5, 1.0, 1.5))  # corners on the coordinate planes
+    soup[soup == 0.0] = -0.0
+    soup[0, 0] = np.abs(soup[0, 0])
+    vertices, faces = merge_vertices(soup)
+    assert len(vertices) == 8
+    np.testing.assert_array_equal(vertices[faces], soup)
+
+
+def test_hole_caps_close_a_planar_hole_exactly():
+    soup = box_triangles()[2:]
+    caps = hole_caps(topology(soup))
+    assert caps.shape == (4, 3, 3)
+    closed = np.concatenate([soup, caps])
+    assert mesh_health(closed).encloses_volume
+    assert abs(volume_integrals(closed).volume - 6.0) < 1e-12

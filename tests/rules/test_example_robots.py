@@ -1,0 +1,93 @@
+"""All rules over the real example-robot-data URDFs: nothing crashes, and a few genuine
+problems in those files are found where they are."""
+
+from __future__ import annotations
+
+from collections import Counter
+from importlib.metadata import PackageNotFoundError, distribution
+from pathlib import Path
+
+import pytest
+
+from robotdesc.diagnostics import Finding
+from robotdesc.model.parse import parse_urdf
+from robotdesc.rules.registry import RuleContext, all_rules, run_rule
+
+
+def _robots_dir() -> Path | None:
+    try:
+        root = distribution("example-robot-data").locate_file(
+            "cmeel.prefix/share/example-robot-data/robots")
+    except PackageNotFoundError:
+        return None
+    path = Path(str(root))
+    return path if path.is_dir() else None
+
+
+ROBOTS = _robots_dir()
+URDFS = sorted(ROBOTS.rglob("*.urdf")) if ROBOTS else []
+pytestmark = pytest.mark.skipif(not URDFS, reason="example-robot-data is not installed")
+
+
+def lint(name: str) -> list[tuple[str, Finding]]:
+    [path] = [p for p in URDFS if p.name == name]
+    robot = parse_urdf(path.read_bytes(), str(path))
+    return [(rule_.code, finding) for rule_ in all_rules()
+            for finding in run_rule(rule_, robot, RuleContext(options=rule_.default_options()))]
+
+
+def located(name: str, code: str) -> set[tuple[str, int]]:
+    return {(f.element, f.where.span.line) for c, f in lint(name) if c == code}
+
+
+def test_there_are_many_example_robots() -> None:
+    assert len(URDFS) >= 60
+
+
+@pytest.mark.parametrize("path", URDFS, ids=lambda p: p.name)
+def test_all_rules_run_on_example_robot(path: Path) -> None:
+    robot = parse_urdf(path.read_bytes(), str(path))
+    for rule_ in all_rules():
+        for finding in run_rule(rule_, robot, RuleContext(options=rule_.default_options())):
+            assert finding.where is not None and finding.where.span.line > 0
+            assert finding.message and finding.element
+
+
+def test_clean_example_robots_stay_clean() -> None:
+    for name in ("panda.urdf", "ur5_robot.urdf", "solo12.urdf", "go1.urdf", "z1.urdf"):
+        assert lint(name) == [], name
+
+
+def test_ur3_urdf_is_an_empty_robot_without_a_name() -> None:
+    codes = Counter(code for code, _ in lint("ur3.urdf"))
+    assert codes == Counter({"S001": 1, "S110": 1})
+
+
+def test_tiago_dual_gazebo_reference_left_unexpanded() -> None:
+    assert ("gazebo:wheel_{side}_joint", 346) in located("tiago_dual.urdf", "G101")
+
+
+def test_alex_hand_mimics_an_unprefixed_joint() -> None:
+    assert ("joint:Left_index_q2", 1037) in located("alex_psyonic_hands.urdf", "J201")
+
+
+def test_talos_reduced_corrected_uses_undefined_material() -> None:
+    assert located("talos_reduced_corrected.urdf", "V101") == {
+        ("link:wrist_right_ft_tool_link/visual[0]", 1233),
+        ("link:wrist_left_ft_tool_link/visual[0]", 1287)}
+
+
+def test_talos_left_arm_refers_to_the_missing_first_arm_joint() -> None:
+    assert located("talos_left_arm.urdf", "T101") == {("transmission:arm_left_1_trans", 353)}
+    assert ("gazebo:arm_left_1_joint", 163) in located("talos_left_arm.urdf", "G101")
+
+
+def test_talos_gripper_fixed_joints_carry_mimic() -> None:
+    findings = [f for c, f in lint("talos_reduced.urdf") if c == "J203"]
+    assert len(findings) == 12
+    assert all(f.message.startswith("fixed joint") for f in findings)
+
+
+def test_mesh_uri_problems() -> None:
+    assert Counter(c for c, _ in lint("romeo_laas_small.urdf"))["P102"] == 20
+    assert Counter(c for c, _ in lint("talos_full_v2.urdf"))["P104"] == 93

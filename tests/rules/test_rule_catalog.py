@@ -1,0 +1,35 @@
+"""The catalog registers every rule with a well-formed code, name, family and severity."""
+
+from __future__ import annotations
+
+import re
+
+from robotdesc.diagnostics import Severity
+from robotdesc.rules.registry import all_rules, get_rule
+
+CODE = re.compile(r"^[A-Z]{1,3}\d{3}$")
+NAME = re.compile(r"^[a-z0-9]+(-[a-z0-9]+)*$")
+
+
+def test_codes_and_names_are_well_formed_and_unique() -> None:
+    rules = all_rules()
+    assert len(rules) >= 34
+    for rule_ in rules:
+        assert CODE.match(rule_.code), rule_.code
+        assert NAME.match(rule_.name), rule_.name
+        assert isinstance(rule_.severity, Severity)
+    assert len({r.name for r in rules}) == len(rules)
+
+
+def test_families_match_code_prefixes() -> None:
+    prefixes = {"structure": "S", "joints": "J1", "mimic": "J2", "transmissions": "T",
+                "gazebo": "G", "visual": "V", "paths": "P", "xacro": "X", "meta": "RD"}
+    for rule_ in all_rules():
+        assert rule_.code.startswith(prefixes[rule_.family]), (rule_.code, rule_.family)
+
+
+def test_lookup_by_code_or_name() -> None:
+    assert get_rule("j102").name == "missing-joint-limit"
+    assert get_rule("unused-suppression").code == "RD001"
+    assert get_rule("X101").needs == frozenset({"expansion"})
+    assert get_rule("X101").default_options().max_depth == 16
