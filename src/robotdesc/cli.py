@@ -75,6 +75,11 @@ def build_parser() -> argparse.ArgumentParser:
                            help="expand again even when no input changed")
     expansion.add_argument("--config", metavar="FILE",
                            help="use this robotdesc.toml / pyproject.toml instead of searching")
+    expansion.add_argument("--timeout", type=float, default=60.0, metavar="SECONDS",
+                           help="wall-clock limit of one xacro expansion (default: 60)")
+    expansion.add_argument("--env", action="append", default=[], metavar="NAME",
+                           help="let $(env NAME)/$(optenv NAME) see this variable in safe mode; "
+                                "repeatable")
 
     lint = commands.add_parser(
         "lint", parents=[common, expansion], help="lint descriptions",
@@ -110,6 +115,13 @@ def build_parser() -> argparse.ArgumentParser:
                                description="Show a rule's documentation, options and defaults.")
     rule.add_argument("code", metavar="CODE", help="a rule code (J101) or name")
     rule.set_defaults(handler=_run_rule)
+
+    import importlib
+
+    from robotdesc.commands import COMMAND_MODULES
+
+    for module in COMMAND_MODULES:  # each: register(commands, common=..., expansion=...)
+        importlib.import_module(module).register(commands, common=common, expansion=expansion)
     return parser
 
 
@@ -268,9 +280,14 @@ def _selectors(values: Sequence[str], flag: str) -> list[str]:
 def _expand_options(ns: argparse.Namespace, package_map: Sequence[tuple[str, str]] = ()) -> Any:
     from robotdesc.expansion import ExpandOptions
 
+    if ns.timeout <= 0:
+        from robotdesc.errors import UsageError
+
+        raise UsageError("--timeout must be positive")
     return ExpandOptions(package_paths=tuple(os.path.abspath(p) for p in ns.package_path),
                          package_map=tuple(package_map), trusted=ns.trusted,
-                         use_cache=not ns.no_cache)
+                         use_cache=not ns.no_cache, timeout_s=ns.timeout,
+                         env_allowlist=tuple(ns.env))
 
 
 def _write_report(ns: argparse.Namespace, results: list, failures: list) -> None:

@@ -50,10 +50,12 @@ class RuleContext:
     Attributes:
         options: the rule's options (an instance of its options dataclass, or None).
         expansion: facts from the xacro expansion (empty for plain URDF).
+        meshes: mesh access for rules that declare `needs={"meshes"}` (None otherwise).
     """
 
     options: Any = None
     expansion: ExpansionFacts = field(default_factory=ExpansionFacts)
+    meshes: Any = None
 
 
 CheckFunction = Callable[[Robot, RuleContext], Iterable[Finding]]
