@@ -1,8 +1,6 @@
-"""Structure-only lint stays fast on a large robot (212 wheels)."""
+"""A large generated robot (212 wheels) with every element kind is clean under all rules."""
 
 from __future__ import annotations
-
-import time
 
 from robotdesc.model.parse import parse_urdf
 from robotdesc.rules.registry import RuleContext, all_rules, run_rule
@@ -42,12 +40,6 @@ def lint_all(data: bytes) -> list:
             for f in run_rule(r, robot, RuleContext(options=r.default_options()))]
 
 
-def test_212_wheel_robot_lints_far_under_100_ms() -> None:
-    data = many_wheeled_robot(212)
-    assert lint_all(data) == []
-    best = float("inf")
-    for _ in range(5):
-        start = time.process_time()
-        lint_all(data)
-        best = min(best, time.process_time() - start)
-    assert best < 0.1, f"parse + lint of 212 wheels took {best * 1000:.1f} ms"
+def test_212_wheel_robot_is_clean_under_every_rule() -> None:
+    """Speed of this case is measured in benchmarks/bench_parse_rules.py, not asserted here."""
+    assert lint_all(many_wheeled_robot(212)) == []
