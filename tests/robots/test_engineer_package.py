@@ -32,9 +32,10 @@ def scripts():
 
 
 def _expanded(**args: str):
-    expand = pytest.importorskip("robotdesc.expansion", reason="robotdesc.expansion not available yet")
-    options = expand.ExpandOptions(use_cache=False)
-    return expand.expand_file(TOP, {k: str(v) for k, v in args.items()}, options=options)
+    from robotdesc.expansion import ExpandOptions, expand_file
+
+    options = ExpandOptions(use_cache=False)
+    return expand_file(TOP, {k: str(v) for k, v in args.items()}, options=options)
 
 
 def _expand(**args: str) -> etree._Element:
