@@ -10,7 +10,11 @@ with depth). Every figure is the median wall time of whole processes, measured i
 
 Aims (issue 2): cold <= 1.5 x baseline; warm <= 0.25 x baseline.
 
-Usage: python benchmarks/bench_expand_lint.py [--repeat N] [FILE] [name:=value ...]
+With --scaling, also the cold figures at 56, 112 and 224 wheels per track (one run each):
+plain xacro's time grows super-linearly with recursion depth (minidom's insertBefore searches
+the parent's child list for every moved node); robotdesc's worker splices in linear time.
+
+Usage: python benchmarks/bench_expand_lint.py [--repeat N] [--scaling] [FILE] [name:=value ...]
 """
 
 from __future__ import annotations
@@ -47,6 +51,7 @@ def main() -> None:
     parser.add_argument("file", nargs="?", default=str(DEFAULT_INPUT))
     parser.add_argument("args", nargs="*", help="xacro arguments name:=value")
     parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--scaling", action="store_true", help="also time 56/112/224 wheels per track")
     options = parser.parse_args()
 
     xacro_cli = shutil.which("xacro")
@@ -64,6 +69,13 @@ def main() -> None:
     print(f"{'xacro CLI (baseline)':32s} {baseline:8.3f} s")
     print(f"{'robotdesc lint, cold':32s} {cold:8.3f} s   ratio {cold / baseline:5.2f}  (aim <= 1.50)")
     print(f"{'robotdesc lint, warm cache':32s} {warm:8.3f} s   ratio {warm / baseline:5.2f}  (aim <= 0.25)")
+    if options.scaling:
+        print(f"\n{'wheels per track':>16s} {'xacro':>9s} {'robotdesc cold':>15s} {'ratio':>6s}")
+        for wheels in (56, 112, 224):
+            args = [f"main_wheels:={wheels}", f"flipper_wheels:={wheels}"]
+            plain = wall_time(baseline_cmd + args, env)
+            ours = wall_time(lint_cmd + args + ["--no-cache"], env)
+            print(f"{wheels:16d} {plain:8.2f}s {ours:14.2f}s {ours / plain:6.2f}")
 
 
 if __name__ == "__main__":

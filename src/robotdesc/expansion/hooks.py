@@ -88,6 +88,44 @@ def _make_builder(state: ExpansionState, path: str) -> xml.dom.expatbuilder.Expa
     return TaggingBuilder()
 
 
+def splice_replace_node(node, by, content_only=False):
+    """xacro's `replace_node` in linear time: the same result, one splice of the child list.
+
+    xacro moves each expanded node with minidom's `insertBefore`, which searches the parent's
+    child list every time: expanding n macro calls into one parent costs O(n^2) (the cause of
+    xacro's super-linear time on long robots). This computes the new nodes once, detaches them,
+    and splices them in place of `node`, fixing parent and sibling links.
+    """
+    parent = node.parentNode
+    moved = []
+    for source in ([] if by is None else by if isinstance(by, list) else [by]):
+        if content_only:
+            children = list(source.childNodes)
+            source.childNodes[:] = []
+            moved.extend(children)
+        else:
+            if source.parentNode is not None and source is not node:
+                source.parentNode.removeChild(source)
+            moved.append(source)
+    index = parent.childNodes.index(node)
+    parent.childNodes[index:index + 1] = moved
+    before = parent.childNodes[index - 1] if index > 0 else None
+    after_index = index + len(moved)
+    after = parent.childNodes[after_index] if after_index < len(parent.childNodes) else None
+    previous = before
+    for child in moved:
+        child.parentNode = parent
+        child.previousSibling = previous
+        if previous is not None:
+            previous.nextSibling = child
+        previous = child
+    if previous is not None:
+        previous.nextSibling = after
+    if after is not None:
+        after.previousSibling = previous
+    node.parentNode = node.previousSibling = node.nextSibling = None
+
+
 def install(state: ExpansionState, find_package: Callable[[str], str],
             check_file: Callable[[str], None]) -> None:
     """Patch the xacro module so that expansion records provenance into `state`.
@@ -204,6 +242,7 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
         return find_package(package)
 
     xacro.parse = parse
+    xacro.replace_node = splice_replace_node
     xacro.eval_all = eval_all
     xacro.handle_macro_call = handle_macro_call
     xacro.check_attrs = check_attrs
