@@ -83,3 +83,19 @@ def test_recursion_depth_is_recorded(tmp_path):
     assert (record.macro, record.depth) == ("chain", 10)
     assert record.defined_at == Span(str(source), 3)
     assert record.called_at == Span(str(source), 7)
+
+
+def test_find_in_an_expression_resolves_the_package(tmp_path):
+    import shutil
+
+    workspace = shutil.copytree(WS.parent, tmp_path / "ws") / "src"
+    robot = workspace / "robot_pkg" / "urdf" / "find_expr.urdf.xacro"
+    robot.write_text(
+        '<robot name="f" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="${find(\'arm_pkg\') + \'/urdf/arm.xacro\'}"/>\n'
+        '  <link name="base"/>\n'
+        '  <xacro:arm_segment name="upper" parent="base" length="0.2"/>\n'
+        '</robot>\n')
+    expanded = expand_file(robot, options=ExpandOptions(use_cache=False))
+    assert b'name="upper"' in expanded.xml
+    assert str(workspace / "arm_pkg" / "urdf" / "arm.xacro") in expanded.files_read

@@ -249,6 +249,7 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
     xacro.abs_filename_spec = abs_filename_spec
     subst._eval_find = eval_find
     subst._eval_dict["find"] = eval_find
+    xacro._global_symbols.setdefault("find", eval_find)  # ${find('pkg')}, as ROS 2 files use
 
 
 def install_environment(env: dict[str, str], safe: bool) -> None:
