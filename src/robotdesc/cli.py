@@ -172,7 +172,7 @@ def _run_expand(ns: argparse.Namespace) -> int:
     from robotdesc.config import discover_config, load_config
     from robotdesc.errors import UsageError
     from robotdesc.expansion import expand_file
-    from robotdesc.model.parse import strip_provenance
+    from robotdesc.model.write import urdf_text
     from robotdesc.source import Span
 
     paths, args = _split_inputs(ns.inputs)
@@ -184,8 +184,7 @@ def _run_expand(ns: argparse.Namespace) -> int:
     if ns.output and _same_file(ns.output, source):
         raise UsageError("refusing to overwrite the input file; choose another -o", Span(source))
     expanded = expand_file(source, {**dict(config.args), **args}, options=options)
-    urdf = strip_provenance(expanded.xml)
-    urdf = urdf if urdf.endswith(b"\n") else urdf + b"\n"
+    urdf = urdf_text(expanded.xml, expanded.source)
     if not ns.output:
         sys.stdout.buffer.write(urdf)
         sys.stdout.flush()
