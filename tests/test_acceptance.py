@@ -27,8 +27,8 @@ def test_finding_in_a_macro_used_twice_points_at_the_body_with_each_call_site():
     found = [(d["code"], d["file"], d["line"], tuple((s["file"], s["line"]) for s in d["macro_stack"]))
              for d in report["diagnostics"]]
     assert sorted(found) == [
-        ("J102", str(FINGER), 10, ((str(HAND), 10),)),
-        ("J102", str(FINGER), 10, ((str(HAND), 11),)),
+        ("J102", str(FINGER), 10, ((str(HAND), 15),)),
+        ("J102", str(FINGER), 10, ((str(HAND), 16),)),
     ]
 
 

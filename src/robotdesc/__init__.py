@@ -25,6 +25,18 @@ __version__ = "0.1.0"
 __all__ = ["__version__", "expand", "lint", "load"]
 
 
+def generate_collision(robot: "Robot", method: str = "decimate", **options):
+    """Collision geometry per link, measured; see `robotdesc.collision.generate`.
+
+    Returns a `CollisionResult` (new geometry and a per-link report); `robot` is not
+    modified. Scripts must guard their entry point (`if __name__ == "__main__":`), as the
+    work runs in worker processes.
+    """
+    from robotdesc.collision.generate import generate_collision as run
+
+    return run(robot, method, **options)
+
+
 def expand(path: str, args: Mapping[str, str] | None = None, *,
            package_paths: Sequence[str] = (), trusted: bool = False,
            use_cache: bool = True) -> "Expanded":
@@ -87,3 +99,14 @@ def lint(path: str, args: Mapping[str, str] | None = None, *,
     options = ExpandOptions(package_paths=tuple(package_paths), trusted=trusted)
     return lint_file(path, config, args=args, expand_options=options, select=select,
                      ignore=ignore)
+
+
+def show(target, joint_values: Mapping[str, float] | None = None, **options):
+    """A 3D view of a robot (a file, a `Robot` or a `LintResult`) at a configuration.
+
+    Returns a `robotdesc.view.show.View`: displayed inline in Jupyter, `.save("robot.html")`
+    writes the self-contained page. Options: see `robotdesc.view.show.show`.
+    """
+    from robotdesc.view.show import show as run
+
+    return run(target, joint_values, **options)

@@ -14,6 +14,7 @@ import sys
 from typing import Any, Sequence
 
 EXIT_OK, EXIT_FINDINGS, EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
+REPORT_FORMATS = ("text", "json", "sarif", "junit", "github", "gitlab")
 BUG_REPORT_URL = "https://github.com/robotdesc/robotdesc/issues"
 
 log = logging.getLogger("robotdesc.cli")
@@ -83,7 +84,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     lint = commands.add_parser(
         "lint", parents=[common, expansion], help="lint descriptions",
-        description="Lint URDF/xacro files (directories: every *.urdf and *.urdf.xacro).")
+        description="Lint URDF/xacro files. A directory (package or workspace) is searched "
+                    "for top-level descriptions: *.urdf, and xacro files that make a robot "
+                    "rather than only define macros; a config's `targets` replace the search.")
     lint.add_argument("inputs", nargs="+", metavar="PATH | name:=value",
                       help="files or directories to lint, and xacro arguments")
     lint.add_argument("--select", action="append", default=[], metavar="CODES",
@@ -91,12 +94,24 @@ def build_parser() -> argparse.ArgumentParser:
                            "comma-separated, repeatable)")
     lint.add_argument("--ignore", action="append", default=[], metavar="CODES",
                       help="skip these rules (added to the config's ignore)")
-    lint.add_argument("--format", choices=("text", "json"), default="text",
-                      help="output format (default: text)")
+    lint.add_argument("--format", choices=REPORT_FORMATS, default="text",
+                      help="output format: text (default), json, sarif (code scanning), "
+                           "junit (CI test reports), github (workflow annotations), "
+                           "gitlab (Code Quality)")
     lint.add_argument("--output-file", "-o", metavar="FILE", help="write the report here")
     lint.add_argument("--fail-on", choices=("error", "warning", "info"),
                       help="lowest severity that makes the exit code 1 (default: config, "
                            "else info: any finding)")
+    lint.add_argument("--baseline", metavar="FILE",
+                      help="report only findings not recorded in this baseline file")
+    lint.add_argument("--write-baseline", metavar="FILE",
+                      help="record the current findings in FILE (then report as --baseline)")
+    lint.add_argument("--statistics", action="store_true",
+                      help="print the number of findings per rule instead of the findings "
+                           "(text or json)")
+    lint.add_argument("--jobs", "-j", type=int, default=1, metavar="N",
+                      help="lint N targets at once in worker processes (0: one per CPU; "
+                           "default: 1)")
     lint.set_defaults(handler=_run_lint)
 
     expand = commands.add_parser(
@@ -129,43 +144,91 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _run_lint(ns: argparse.Namespace) -> int:
-    from robotdesc.config import discover_config, load_config
+    from robotdesc.config import load_config
     from robotdesc.diagnostics import Severity
-    from robotdesc.errors import InputError
-    from robotdesc.linting.driver import lint_file
-    from robotdesc.linting.result import LintFailure
-    from robotdesc.linting.targets import collect_targets
+    from robotdesc.errors import InputError, UsageError
+    from robotdesc.linting.parallel import lint_targets
+    from robotdesc.linting.result import LintFailure, LintResult
+    from robotdesc.linting.targets import discover_targets
 
+    if ns.statistics and ns.format not in ("text", "json"):
+        raise UsageError("--statistics works with --format text or json")
+    if ns.jobs < 0:
+        raise UsageError("--jobs must be 0 (one per CPU) or positive")
     paths, args = _split_inputs(ns.inputs)
     select = _selectors(ns.select, "--select") or None
     ignore = _selectors(ns.ignore, "--ignore")
     options = _expand_options(ns)
     explicit = load_config(ns.config) if ns.config else None
 
-    results, failures, failed = [], [], False
+    targets, failures = [], []
     for raw in paths:
         try:
-            targets = collect_targets([raw])
+            discovery = discover_targets(raw, explicit)
         except InputError as exc:
             failures.append(LintFailure(raw, exc))
             continue
-        for target in targets:
-            log.info("linting %s", target)
-            try:
-                config = explicit or discover_config(target)
-                result = lint_file(target, config, args=args, expand_options=options,
-                                   select=select, ignore=ignore)
-            except InputError as exc:
-                failures.append(LintFailure(target, exc))
-                continue
-            results.append(result)
-            fail_on = Severity.parse(ns.fail_on) if ns.fail_on else config.fail_on
-            failed = failed or result.failed(fail_on)
+        if discovery.directory:
+            _write_discovery(sys.stderr, discovery)
+        targets.extend(discovery.targets)
+    outcomes = lint_targets(targets, args=args, expand_options=options, select=select,
+                            ignore=ignore, jobs=ns.jobs)
+    results = [o for o in outcomes if isinstance(o, LintResult)]
+    failures += [o for o in outcomes if isinstance(o, LintFailure)]
+    fail_on = {t.path: Severity.parse(ns.fail_on) if ns.fail_on else t.config.fail_on
+               for t in targets}
+    results = _apply_baseline(ns, results)
+    failed = any(r.failed(fail_on.get(r.target, Severity.INFO)) for r in results)
 
-    for failure in failures:
-        _write_input_error(sys.stderr, failure.error, failure.target)
-    _write_report(ns, results, failures)
+    if ns.format == "text":
+        for failure in failures:
+            _write_input_error(sys.stderr, failure.error, failure.target)
+    _write_report(ns, results, failures, min(fail_on.values(), default=Severity.INFO))
     return EXIT_INPUT if failures else EXIT_FINDINGS if failed else EXIT_OK
+
+
+def _write_discovery(stream: Any, discovery: Any) -> None:
+    """Say what a directory search found (on stderr: reports stay machine-readable)."""
+    from robotdesc.linting.targets import target_name
+
+    def listing(names: list[str]) -> str:
+        return ", ".join(names[:8]) + (f", ... ({len(names) - 8} more)" if len(names) > 8
+                                       else "")
+
+    base = discovery.path
+    names = [t.name(base) for t in discovery.targets]
+    text = f"robotdesc: {discovery.path}: linting {len(names)} target(s): {listing(names)}"
+    if discovery.libraries:
+        text += (f"; skipped {len(discovery.libraries)} macro librar"
+                 f"{'y' if len(discovery.libraries) == 1 else 'ies'}")
+        log.info("macro libraries: %s",
+                 listing([target_name(p, (), base) for p in discovery.libraries]))
+    if discovery.unlisted:
+        text += (f"; skipped {len(discovery.unlisted)} file(s) not in their config's targets: "
+                 + listing([target_name(p, (), base) for p in discovery.unlisted]))
+    stream.write(text + "\n")
+
+
+def _apply_baseline(ns: argparse.Namespace, results: list) -> list:
+    """--write-baseline records the findings; --baseline (or the written one) hides them."""
+    from robotdesc.linting.baseline import apply_baseline, read_baseline, render_baseline
+
+    if ns.write_baseline:
+        _write_atomically(ns.write_baseline, render_baseline(results, ns.write_baseline)
+                          .encode("utf-8"))
+        count = sum(len(r.diagnostics) for r in results)
+        sys.stderr.write(f"robotdesc: wrote {count} finding(s) to {ns.write_baseline}\n")
+    path = ns.write_baseline or ns.baseline
+    if not path:
+        return results
+    outcome = apply_baseline(results, read_baseline(path),
+                             os.path.dirname(os.path.abspath(path)))
+    if outcome.matched or outcome.stale:
+        sys.stderr.write(f"robotdesc: {outcome.matched} finding(s) hidden by the baseline "
+                         f"{path}" + (f"; {outcome.stale} recorded finding(s) no longer occur "
+                                      "(rewrite it with --write-baseline)"
+                                      if outcome.stale else "") + "\n")
+    return list(outcome.results)
 
 
 def _run_expand(ns: argparse.Namespace) -> int:
@@ -289,22 +352,51 @@ def _expand_options(ns: argparse.Namespace, package_map: Sequence[tuple[str, str
                          env_allowlist=tuple(ns.env))
 
 
-def _write_report(ns: argparse.Namespace, results: list, failures: list) -> None:
-    if ns.format == "json":
+def _write_report(ns: argparse.Namespace, results: list, failures: list,
+                  fail_on: Any) -> None:
+    """Render the report in the chosen format to --output-file or stdout."""
+    colour = not ns.output_file and _use_colour(sys.stdout)
+    text = _render_report(ns.format, ns.statistics, results, failures, fail_on, colour)
+    if text is None:  # coloured text straight to the terminal
+        from robotdesc.report.text import write_text
+
+        write_text(sys.stdout, results, failures, colour=_use_colour(sys.stdout))
+    elif ns.output_file:
+        _write_atomically(ns.output_file, text.encode("utf-8"))
+    else:
+        sys.stdout.write(text)
+
+
+def _render_report(fmt: str, statistics: bool, results: list, failures: list,
+                   fail_on: Any, colour: bool) -> str | None:
+    """The report text (None: text format for a terminal, written by `write_text`)."""
+    if statistics:
+        from robotdesc.report.statistics import render_statistics_json, render_statistics_text
+
+        return (render_statistics_json if fmt == "json" else render_statistics_text)(results)
+    if fmt == "json":
         from robotdesc.report.json import render_json
 
-        text = render_json(results, failures)
-        if ns.output_file:
-            _write_atomically(ns.output_file, text.encode("utf-8"))
-        else:
-            sys.stdout.write(text)
-        return
-    from robotdesc.report.text import render_text, write_text
+        return render_json(results, failures)
+    if fmt == "sarif":
+        from robotdesc.report.sarif import render_sarif
 
-    if ns.output_file:
-        _write_atomically(ns.output_file, render_text(results, failures).encode("utf-8"))
-    else:
-        write_text(sys.stdout, results, failures, colour=_use_colour(sys.stdout))
+        return render_sarif(results, failures)
+    if fmt == "junit":
+        from robotdesc.report.junit import render_junit
+
+        return render_junit(results, failures, fail_on=fail_on)
+    if fmt == "github":
+        from robotdesc.report.github import render_github
+
+        return render_github(results, failures)
+    if fmt == "gitlab":
+        from robotdesc.report.gitlab import render_gitlab
+
+        return render_gitlab(results, failures)
+    from robotdesc.report.text import render_text
+
+    return None if colour else render_text(results, failures)
 
 
 def _write_input_error(stream: Any, error: Any, target: str | None) -> None:

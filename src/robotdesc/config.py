@@ -21,6 +21,17 @@ Example (pyproject.toml)::
     my_robot_description = "src/my_robot_description"
     [tool.robotdesc.args]          # default xacro arguments
     use_gazebo = "false"
+    [tool.robotdesc.meshes]        # mesh and inertia settings (see MeshSettings)
+    inertia-source = "collision"   # or "visual": the geometry mass properties come from
+    expected-mass = 16.3           # kg, checked by B101 (mass-budget)
+    mass-tolerance = 0.05          # relative
+    allow-absolute-paths = false   # accept file:// and absolute mesh paths
+    collision-triangle-budget = 10000
+    cache = true                   # cache mesh summaries (see docs/meshes.md)
+    [[tool.robotdesc.targets]]     # what a directory lint checks; each matrix variant apart
+    file = "urdf/ur.urdf.xacro"
+    args = { safety_limits = "true" }
+    matrix = { ur_type = ["ur5e", "ur10e"] }
 """
 
 from __future__ import annotations
@@ -42,7 +53,54 @@ from robotdesc.source import Span
 CONFIG_FILES = ("robotdesc.toml", "pyproject.toml")
 VCS_MARKERS = (".git", ".hg", ".svn")
 _KEYS = ("select", "ignore", "per_file_ignores", "rules", "severity", "fail_on", "packages",
-         "args")
+         "args", "meshes", "targets")
+
+
+@dataclass(frozen=True)
+class MeshSettings:
+    """How meshes are read and what the mesh and inertia rules expect.
+
+    Attributes:
+        inertia_source: the geometry that mesh-derived mass properties come from:
+            "collision" (default) or "visual"; the other is used when a link has none.
+        expected_mass: the robot's expected total mass (kg), checked by B101; None: unchecked.
+        mass_tolerance: relative tolerance of the total mass against `expected_mass`.
+        allow_absolute_paths: accept `file://` URIs and absolute mesh paths (off: such a
+            description works only on the machine that wrote it).
+        collision_triangle_budget: the most triangles one collision mesh should have.
+        cache: keep mesh summaries in the mesh cache (docs/meshes.md); off: recompute.
+    """
+
+    inertia_source: typing.Literal["collision", "visual"] = "collision"
+    expected_mass: float | None = None
+    mass_tolerance: float = 0.05
+    allow_absolute_paths: bool = False
+    collision_triangle_budget: int = 10_000
+    cache: bool = True
+
+    def __post_init__(self) -> None:
+        if self.expected_mass is not None and not self.expected_mass > 0:
+            raise ValueError(f"expected-mass must be positive, got {self.expected_mass}")
+        if not 0 <= self.mass_tolerance < 1:
+            raise ValueError(f"mass-tolerance must be in [0, 1), got {self.mass_tolerance}")
+        if self.collision_triangle_budget < 1:
+            raise ValueError("collision-triangle-budget must be at least 1, got "
+                             f"{self.collision_triangle_budget}")
+
+
+@dataclass(frozen=True)
+class TargetSpec:
+    """A description the config asks `lint` to check, with its argument matrix.
+
+    Attributes:
+        file: the description (absolute path).
+        args: fixed xacro arguments as (name, value) pairs.
+        matrix: (argument, values) pairs; every combination is linted as its own variant.
+    """
+
+    file: str
+    args: tuple[tuple[str, str], ...] = ()
+    matrix: tuple[tuple[str, tuple[str, ...]], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -59,6 +117,8 @@ class Config:
         fail_on: the lowest severity that makes `lint` exit with 1.
         packages: (package name, absolute directory) pairs.
         args: default xacro arguments as (name, value) pairs.
+        meshes: mesh and inertia settings.
+        targets: the descriptions a directory lint checks (empty: discover them).
     """
 
     path: str | None = None
@@ -70,6 +130,8 @@ class Config:
     fail_on: Severity = Severity.INFO
     packages: tuple[tuple[str, str], ...] = ()
     args: tuple[tuple[str, str], ...] = ()
+    meshes: MeshSettings = MeshSettings()
+    targets: tuple[TargetSpec, ...] = ()
 
     @property
     def root(self) -> str:
@@ -169,6 +231,8 @@ def config_from_mapping(table: Mapping[str, Any], path: str, *, text: str = "",
         fail_on=_severity_value(table.get("fail_on", "info"), "fail-on", where),
         packages=_packages(table.get("packages", {}), where),
         args=_string_table(table.get("args", {}), "args", where),
+        meshes=_mesh_settings(table.get("meshes", {}), where),
+        targets=_targets(table.get("targets", []), where),
     )
 
 
@@ -353,10 +417,64 @@ def _string_table(value: Any, key: str, where: _Locator) -> tuple[tuple[str, str
     return tuple(result)
 
 
+def _mesh_settings(value: Any, where: _Locator) -> MeshSettings:
+    if not isinstance(value, dict):
+        raise where.error("meshes", "'meshes' must be a table of mesh settings")
+    hints = typing.get_type_hints(MeshSettings)
+    known = {f.name for f in dataclasses.fields(MeshSettings)}
+    values = {}
+    for name, raw in value.items():
+        field_name = _snake(name)
+        if field_name not in known:
+            raise where.error(name, f"unknown key 'meshes.{name}' (known: "
+                                    f"{', '.join(k.replace('_', '-') for k in sorted(known))})")
+        try:
+            values[field_name] = _coerce(raw, hints[field_name])
+        except (TypeError, ValueError) as exc:
+            raise where.error(name, f"meshes.{name}: {exc}") from None
+    try:
+        return MeshSettings(**values)
+    except ValueError as exc:
+        raise where.error("meshes", f"meshes: {exc}") from None
+
+
 def _packages(value: Any, where: _Locator) -> tuple[tuple[str, str], ...]:
     base = os.path.dirname(where.path)
     return tuple((name, os.path.normpath(os.path.join(base, os.path.expanduser(directory))))
                  for name, directory in _string_table(value, "packages", where))
+
+
+def _targets(value: Any, where: _Locator) -> tuple[TargetSpec, ...]:
+    """`[[targets]]` tables: `file` (relative to the config), optional `args` and `matrix`."""
+    if not isinstance(value, list) or not all(isinstance(item, dict) for item in value):
+        raise where.error("targets", "'targets' must be an array of tables "
+                                     "([[tool.robotdesc.targets]] with file = \"...\")")
+    base = os.path.dirname(where.path)
+    specs = []
+    for item in value:
+        unknown = sorted(set(item) - {"file", "args", "matrix"})
+        if unknown:
+            raise where.error(unknown[0], f"unknown key 'targets.{unknown[0]}' "
+                                          "(known: file, args, matrix)")
+        file = item.get("file")
+        if not isinstance(file, str) or not file:
+            raise where.error("targets", "each target needs file = \"path/to/robot.urdf.xacro\"")
+        path = os.path.normpath(os.path.join(base, os.path.expanduser(file)))
+        if not os.path.isfile(path):
+            raise where.error(file, f"target file '{file}' does not exist")
+        matrix = item.get("matrix", {})
+        if not isinstance(matrix, dict):
+            raise where.error("matrix", "'targets.matrix' must be a table of name = [values]")
+        axes = []
+        for name, values in matrix.items():
+            if not isinstance(values, list) or not values:
+                raise where.error(name, f"'targets.matrix.{name}' must be a non-empty list")
+            table = _string_table({str(i): v for i, v in enumerate(values)}, f"matrix.{name}",
+                                  where)
+            axes.append((name, tuple(v for _, v in table)))
+        specs.append(TargetSpec(path, _string_table(item.get("args", {}), "args", where),
+                                tuple(axes)))
+    return tuple(specs)
 
 
 # --- file reading -------------------------------------------------------------------------

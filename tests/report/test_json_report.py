@@ -6,7 +6,7 @@ import json
 
 import jsonschema
 import pytest
-from report_samples import build_sample
+from .report_samples import build_sample
 
 import robotdesc
 from robotdesc.report.json import JSON_SCHEMA, SCHEMA_VERSION, render_json
@@ -34,7 +34,7 @@ def test_json_report_fields(sample) -> None:
         "macro_stack": [{"file": str(root / "robot.urdf.xacro"), "line": 3},
                         {"file": str(root / "robot.urdf.xacro"), "line": 4}],
         "fix": '<limit lower="-1" upper="1" effort="1" velocity="1"/>',
-        "target": str(root / "robot.urdf.xacro"),
+        "target": str(root / "robot.urdf.xacro"), "variant": {},
     }
     assert document["diagnostics"][1]["column"] is None
     assert document["diagnostics"][2]["file"] is None
@@ -42,7 +42,7 @@ def test_json_report_fields(sample) -> None:
         "kind": "ExpansionError", "message": "undefined property 'undefined'",
         "file": str(root / "broken.urdf.xacro"), "line": 2, "column": 3,
         "macro_stack": [{"file": str(root / "robot.urdf.xacro"), "line": 9}],
-        "target": str(root / "broken.urdf.xacro"),
+        "target": str(root / "broken.urdf.xacro"), "variant": {},
     }]
 
 

@@ -6,4 +6,12 @@ to a function `(argparse.Namespace) -> int` returning the exit code. Module impo
 cheap: import heavy libraries inside the handler.
 """
 
-COMMAND_MODULES: tuple[str, ...] = ()
+COMMAND_MODULES: tuple[str, ...] = (
+    "robotdesc.commands.inertia",
+    "robotdesc.commands.collision",
+    "robotdesc.commands.sim",
+    "robotdesc.commands.view",
+    "robotdesc.commands.report",
+    "robotdesc.commands.info",
+    "robotdesc.commands.srdf",
+)

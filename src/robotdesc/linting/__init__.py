@@ -1,7 +1,9 @@
 """Linting: run the selected rules over a description and collect diagnostics.
 
 `lint_file` (driver.py) is the pipeline; select.py chooses rules, suppress.py reads inline
-`<!-- robotdesc: ignore CODE -->` comments, targets.py turns command-line paths into files.
+`<!-- robotdesc: ignore CODE -->` comments, targets.py turns command-line paths into
+targets (matrix.py: argument variants), parallel.py lints many targets across processes,
+baseline.py hides findings already recorded.
 """
 
 from __future__ import annotations
@@ -10,7 +12,7 @@ from typing import Any
 
 _LAZY = {"lint_file": "driver", "LintResult": "result", "RuleCrashed": "result",
          "LintFailure": "result",
-         "collect_targets": "targets"}
+         "discover_targets": "targets", "LintTarget": "targets", "lint_targets": "parallel"}
 
 __all__ = sorted(_LAZY)
 

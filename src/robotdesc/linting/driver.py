@@ -64,11 +64,13 @@ def lint_file(path: str, config: Config | None = None, *,
     facts = ExpansionFacts(expanded.macro_recursion, expanded.files_read, expanded.from_xacro)
     fallback = robot.where or Provenance(Span(expanded.source))
 
+    meshes = _mesh_context(rules, robot, target, config, options)
     diagnostics = []
     for rule in rules:
         configured = config.options_for(rule.code)
         context = RuleContext(options=configured if configured is not None
-                              else rule.default_options(), expansion=facts)
+                              else rule.default_options(), expansion=facts,
+                              meshes=meshes if "meshes" in rule.needs else None)
         try:
             findings = list(run_rule(rule, robot, context))
         except RobotdescError:
@@ -96,6 +98,17 @@ def lint_file(path: str, config: Config | None = None, *,
     return LintResult(target=target, diagnostics=tuple(sorted(kept, key=Diagnostic.sort_key)),
                       expanded=expanded, robot=robot, suppressed=len(outcome.suppressed),
                       config_path=config.path, rules_run=tuple(r.code for r in rules))
+
+
+def _mesh_context(rules: Sequence[Any], robot: Any, target: str, config: Config,
+                  options: Any) -> Any:
+    """The mesh access for rules that need meshes; None (and nothing imported) otherwise."""
+    if not any("meshes" in rule.needs for rule in rules):
+        return None
+    from robotdesc.mesh.context import MeshContext
+
+    return MeshContext.for_file(robot, target, config.meshes, tuple(options.package_paths),
+                                tuple(options.package_map))
 
 
 def _diagnostic(rule: Any, severity: Severity, finding: Finding, fallback: Provenance,

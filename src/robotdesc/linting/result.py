@@ -31,6 +31,8 @@ class LintResult:
         suppressed: how many findings inline comments suppressed.
         config_path: the config file that applied (None: defaults).
         rules_run: the codes of the rules that ran.
+        variant: the matrix arguments of this variant as (name, value) pairs (empty: the
+            target is not a matrix variant); see robotdesc.linting.matrix.
     """
 
     target: str
@@ -40,6 +42,7 @@ class LintResult:
     suppressed: int = 0
     config_path: str | None = None
     rules_run: tuple[str, ...] = ()
+    variant: tuple[tuple[str, str], ...] = ()
 
     @property
     def counts(self) -> dict[Severity, int]:
@@ -83,7 +86,9 @@ class LintFailure:
     Attributes:
         target: the file as given.
         error: why (an `InputError`, carrying file:line and the macro call chain).
+        variant: the matrix arguments of the variant that failed (empty: not a variant).
     """
 
     target: str
     error: InputError
+    variant: tuple[tuple[str, str], ...] = ()

@@ -39,8 +39,13 @@ def is_selected(code: str, name: str, select: Sequence[str] | None,
 
 def select_rules(rules: Iterable[Any], select: Sequence[str] | None,
                  ignore: Sequence[str] = ()) -> list[Any]:
-    """The rules (objects with `code` and `name`) that run, in their given order."""
-    return [r for r in rules if is_selected(r.code, r.name, select, ignore)]
+    """The rules (objects with `code` and `name`) that run, in their given order.
+
+    An opt-in rule (`opt_in` true) runs only when a selector other than "ALL" selects it.
+    """
+    return [r for r in rules if is_selected(r.code, r.name, select, ignore)
+            and (not getattr(r, "opt_in", False)
+                 or best_match(select or (), r.code, r.name) > 1)]
 
 
 def unknown_selectors(selectors: Iterable[str], rules: Iterable[Any]) -> list[str]:

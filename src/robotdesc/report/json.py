@@ -22,7 +22,8 @@ _POSITION = {"file": {"type": ["string", "null"]},
              "line": {"type": ["integer", "null"], "minimum": 1},
              "column": {"type": ["integer", "null"], "minimum": 1},
              "macro_stack": {"type": "array", "items": _SPAN},
-             "target": {"type": "string"}}
+             "target": {"type": "string"},
+             "variant": {"type": "object", "additionalProperties": {"type": "string"}}}
 
 #: JSON Schema (draft 2020-12) of the report; tests validate the output against it.
 JSON_SCHEMA: dict[str, Any] = {
@@ -97,6 +98,8 @@ def report_dict(results: Sequence[Any], failures: Sequence[Any] = ()) -> dict[st
     from robotdesc import __version__
 
     diagnostics = [d for result in results for d in result.diagnostics]
+    variants = [dict(getattr(result, "variant", ())) for result in results
+                for _ in result.diagnostics]
     summary = {"files_checked": len(results), "files_not_checked": len(failures)}
     summary.update({str(level): sum(d.severity == level for d in diagnostics)
                     for level in sorted(Severity, reverse=True)})
@@ -105,8 +108,10 @@ def report_dict(results: Sequence[Any], failures: Sequence[Any] = ()) -> dict[st
         "schema_version": SCHEMA_VERSION,
         "tool": {"name": "robotdesc", "version": __version__},
         "summary": summary,
-        "diagnostics": [diagnostic_dict(d) for d in diagnostics],
-        "failures": [failure_dict(f) for f in failures],
+        "diagnostics": [{**diagnostic_dict(d), "variant": v}
+                        for d, v in zip(diagnostics, variants)],
+        "failures": [{**failure_dict(f), "variant": dict(getattr(f, "variant", ()))}
+                     for f in failures],
     }
 
 

@@ -20,6 +20,7 @@ from typing import Any, Callable, Iterable, Sequence, TextIO
 
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.errors import InputError
+from robotdesc.linting.matrix import variant_label
 from robotdesc.source import Span
 
 Segment = tuple[str, str]  # (text, rich style; "" for none)
@@ -73,8 +74,12 @@ def render_lines(results: Sequence, failures: Sequence = (), *, cwd: str | None 
     show = lambda path: display_path(path, cwd)  # noqa: E731
     lines: list[Line] = []
     for result in results:
+        variant = variant_label(getattr(result, "variant", ()))
         for diagnostic in result.diagnostics:
-            lines.extend(_diagnostic_lines(diagnostic, show, cache, show_source))
+            found = _diagnostic_lines(diagnostic, show, cache, show_source)
+            if variant:  # a matrix variant of its target: say which
+                found[0] = [*found[0], (f" (variant {variant})", "")]
+            lines.extend(found)
             lines.append([])
     lines.append(summary_line(results, failures))
     return lines

@@ -1,12 +1,18 @@
 """Imports every rule module so that each registers its rules (see registry)."""
 
 from robotdesc.rules import (  # noqa: F401
+    budget,
     gazebo,
+    inertia,
+    inertia_meshes,
     joints,
+    kinematics,
     materials,
+    meshes,
     meta,
     mimic,
     paths,
+    sim,
     structure,
     transmissions,
     xacro,

@@ -73,6 +73,8 @@ class Rule:
         check: the generator function.
         options: the frozen dataclass type of its options (None when it has none).
         needs: what it reads besides the model: "expansion", "meshes".
+        opt_in: off by default; runs only when a selector other than "ALL" names it
+            (its code, a prefix of it, or its name) in --select or the config.
     """
 
     code: str
@@ -82,6 +84,7 @@ class Rule:
     check: CheckFunction
     options: type | None = None
     needs: frozenset[str] = frozenset()
+    opt_in: bool = False
 
     @property
     def doc(self) -> str:
@@ -102,7 +105,8 @@ _REGISTRY: dict[str, Rule] = {}
 
 
 def rule(code: str, name: str, *, family: str, severity: Severity | str = Severity.ERROR,
-         options: type | None = None, needs: Iterable[str] = ()) -> Callable[[CheckFunction], CheckFunction]:
+         options: type | None = None, needs: Iterable[str] = (),
+         opt_in: bool = False) -> Callable[[CheckFunction], CheckFunction]:
     """Register `check` under `code`; used as a decorator."""
 
     def register(check: CheckFunction) -> CheckFunction:
@@ -111,7 +115,8 @@ def rule(code: str, name: str, *, family: str, severity: Severity | str = Severi
         if any(r.name == name for r in _REGISTRY.values()):
             raise RuntimeError(f"rule name {name} registered twice")
         level = Severity.parse(severity) if isinstance(severity, str) else severity
-        _REGISTRY[code] = Rule(code, name, family, level, check, options, frozenset(needs))
+        _REGISTRY[code] = Rule(code, name, family, level, check, options, frozenset(needs),
+                               opt_in)
         return check
 
     return register

@@ -1,0 +1,95 @@
+"""Link results cached by the hash of their sources and parameters.
+
+`<cache dir>/collision-v<N>/<2 hex>/<key>.npz`: the geometry as arrays and the report as
+JSON, written atomically; an unreadable entry is ignored. A second run on unchanged input
+does no decimation, decomposition or measurement. Bump CACHE_VERSION when a method or a
+measurement changes.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import logging
+import os
+import tempfile
+from dataclasses import fields
+from pathlib import Path
+
+import numpy as np
+
+from robotdesc.collision.result import Finding, LinkOutcome, LinkReport, MeshPart, PrimitivePart
+from robotdesc.model.elements import Box, Capsule, Cylinder, Pose, Sphere
+
+log = logging.getLogger(__name__)
+
+CACHE_VERSION = 1
+_PRIMITIVES = {"Box": Box, "Cylinder": Cylinder, "Sphere": Sphere, "Capsule": Capsule}
+
+
+class CollisionCache:
+    """Stored link outcomes (only successful ones: failures are retried every run)."""
+
+    def __init__(self, directory: str | os.PathLike[str]) -> None:
+        self.root = Path(directory) / f"collision-v{CACHE_VERSION}"
+
+    def get(self, key: str) -> LinkOutcome | None:
+        path = self._path(key)
+        try:
+            with np.load(path, allow_pickle=False) as data:
+                meta = json.loads(str(data["meta"]))
+                meshes = [MeshPart(data[f"v{i}"], data[f"f{i}"], bool(convex))
+                          for i, convex in enumerate(meta["convex"])]
+        except FileNotFoundError:
+            return None
+        except (OSError, ValueError, KeyError) as error:
+            log.debug("ignoring unreadable collision cache entry %s: %s", path, error)
+            return None
+        try:
+            report = _report(meta["report"])
+            primitives = [PrimitivePart(_PRIMITIVES[p["kind"]](**p["dims"]),
+                                        Pose(tuple(p["xyz"]), tuple(p["rpy"])))
+                          for p in meta["primitives"]]
+        except (KeyError, TypeError, ValueError) as error:
+            log.debug("ignoring corrupt collision cache entry %s: %s", path, error)
+            return None
+        return LinkOutcome(report, tuple(meshes) + tuple(primitives), key)
+
+    def put(self, outcome: LinkOutcome) -> None:
+        if not outcome.key or not outcome.parts:
+            return
+        meshes = [p for p in outcome.parts if isinstance(p, MeshPart)]
+        primitives = [p for p in outcome.parts if isinstance(p, PrimitivePart)]
+        meta = {"report": outcome.report.to_dict(), "convex": [p.convex for p in meshes],
+                "primitives": [{"kind": type(p.geometry).__name__,
+                                "dims": {k: v for k, v in vars(p.geometry).items()
+                                         if k != "where"},
+                                "xyz": list(p.origin.xyz), "rpy": list(p.origin.rpy)}
+                               for p in primitives]}
+        arrays = {"meta": np.array(json.dumps(meta))}
+        for i, part in enumerate(meshes):
+            arrays[f"v{i}"] = part.vertices
+            arrays[f"f{i}"] = part.faces
+        buffer = io.BytesIO()
+        np.savez(buffer, **arrays)
+        path = self._path(outcome.key)
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=".tmp-")
+            with os.fdopen(handle, "wb") as stream:
+                stream.write(buffer.getvalue())
+            os.replace(temporary, path)
+        except OSError as error:
+            log.warning("collision cache not written to %s: %s", self.root, error)
+
+    def _path(self, key: str) -> Path:
+        return self.root / key[:2] / f"{key}.npz"
+
+
+def _report(data: dict) -> LinkReport:
+    names = {f.name for f in fields(LinkReport)}
+    values = {k: v for k, v in data.items() if k in names}
+    values["findings"] = tuple(Finding(**f) for f in data.get("findings", ()))
+    return LinkReport(**values)
+
+

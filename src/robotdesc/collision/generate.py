@@ -1,0 +1,167 @@
+"""`generate_collision`: new collision geometry for every link with meshes, measured.
+
+Pipeline per link: resolve its meshes (visual by default) -> hash the sources and the
+parameters -> serve from the cache, or load and validate the meshes and run the method in an
+isolated worker (see worker.py) -> check the engine limits. A link that fails (unreadable
+mesh, no volume, worker crash or timeout, broken result) is a finding for that link; the
+others complete. The input robot is never modified.
+"""
+
+from __future__ import annotations
+
+import logging
+import time
+from dataclasses import replace
+from typing import Callable, Sequence
+
+from robotdesc.collision.cache import CACHE_VERSION, CollisionCache
+from robotdesc.collision.limits import limit_findings
+from robotdesc.collision.link import LinkTask, run_link
+from robotdesc.collision.options import CollisionOptions
+from robotdesc.collision.result import CollisionResult, Finding, LinkOutcome, LinkReport
+from robotdesc.collision.sources import (
+    LinkSources,
+    file_digest,
+    link_sources,
+    load_link_soup,
+    package_lookup,
+    sources_digest,
+)
+from robotdesc.collision.worker import TaskFailure, default_jobs, run_tasks
+from robotdesc.errors import InputError
+from robotdesc.model.elements import Robot
+
+log = logging.getLogger(__name__)
+
+#: The function each worker runs on a `LinkTask` (module level, so tests may replace it to
+#: inject a crash).
+LINK_RUNNER: Callable[[LinkTask], LinkOutcome] = run_link
+
+Progress = Callable[[int, int, str], None]
+
+
+def generate_collision(robot: Robot, method: str = "decimate", *,
+                       options: CollisionOptions | None = None,
+                       package_paths: Sequence[str] = (),
+                       package_map: Sequence[tuple[str, str]] = (),
+                       links: Sequence[str] | None = None, jobs: int | None = None,
+                       use_cache: bool = True, cache_dir: str | None = None,
+                       progress: Progress | None = None, **overrides) -> CollisionResult:
+    """Make collision geometry for a robot's links and measure it.
+
+    Args:
+        robot: a parsed robot (`robotdesc.load`); not modified.
+        method: "decimate", "hull", "coacd", "primitive" or "auto".
+        options: every parameter (see `CollisionOptions`); `method` and `overrides`
+            (option names, e.g. `ratio=0.05`, `threshold=0.08`) replace its fields.
+        package_paths, package_map: where `package://` meshes are looked up first.
+        links: only these links (default: every link with geometry).
+        jobs: worker processes (default: all cores).
+        use_cache: reuse results of unchanged links.
+        cache_dir: the cache root (default: $ROBOTDESC_CACHE_DIR or ~/.cache/robotdesc).
+        progress: called with (links done, links in all, link name) as links finish.
+
+    Returns:
+        Per link: the new geometry and a report (faces, hulls, volume ratio, distances).
+
+    Raises:
+        ValueError: an option is out of range or a named link does not exist.
+    """
+    started = time.perf_counter()
+    options = replace(options or CollisionOptions(), method=method, **overrides).validated()
+    plan = plan_links(robot, options, package_paths, package_map, links, use_cache,
+                      cache_dir)
+    total = len(plan.sources)
+    outcomes: dict[int, LinkOutcome] = {}
+    tasks: list[tuple[int, LinkTask]] = []
+    for index, (sources, key) in enumerate(zip(plan.sources, plan.keys)):
+        hit = plan.cache.get(key) if plan.cache is not None and key else None
+        if hit is not None:
+            outcomes[index] = replace(hit, report=replace(hit.report, link=sources.link,
+                                                          cached=True))
+            continue
+        failure = None if not sources.problems else Finding(
+            "mesh-unresolved", "error", "; ".join(sources.problems))
+        if failure is None:
+            try:
+                soup = load_link_soup(sources)
+            except (InputError, ValueError, OSError) as error:  # MeshError is an InputError
+                failure = Finding("mesh-error", "error", str(error))
+        if failure is not None:
+            outcomes[index] = _failed(sources.link, options.method, key, failure)
+            continue
+        tasks.append((index, LinkTask(sources.link, soup, options, key or "")))
+    done = len(outcomes)
+    if progress is not None:
+        progress(done, total, "")
+    jobs = max(1, jobs or default_jobs())
+
+    def finished(position: int, outcome: object) -> None:
+        nonlocal done
+        done += 1
+        if progress is not None:
+            progress(done, total, tasks[position][1].link)
+
+    results = run_tasks(LINK_RUNNER, [task for _, task in tasks], jobs=jobs,
+                        timeout_s=options.mesh_timeout_s, on_done=finished) if tasks else []
+    for (index, task), outcome in zip(tasks, results):
+        if isinstance(outcome, TaskFailure):
+            code = {"crashed": "worker-crashed", "timeout": "worker-timeout"}.get(
+                outcome.kind, "worker-error")
+            outcome = _failed(task.link, options.method, task.key,
+                              Finding(code, "error", outcome.message))
+        elif plan.cache is not None and outcome.written:
+            plan.cache.put(outcome)
+        outcomes[index] = replace(outcome, key=task.key)
+    ordered = tuple(_with_limits(outcomes[i], options) for i in range(total))
+    return CollisionResult(robot, ordered, options, time.perf_counter() - started, jobs)
+
+
+class Plan:
+    """The links to process, their sources, and their keys (no mesh is loaded)."""
+
+    def __init__(self, sources: list[LinkSources], keys: list[str | None],
+                 cache: CollisionCache | None) -> None:
+        self.sources = sources
+        self.keys = keys
+        self.cache = cache
+
+
+def plan_links(robot: Robot, options: CollisionOptions, package_paths: Sequence[str] = (),
+               package_map: Sequence[tuple[str, str]] = (),
+               links: Sequence[str] | None = None, use_cache: bool = True,
+               cache_dir: str | None = None) -> Plan:
+    """Resolve each link's sources and compute its key (used by generation and --check)."""
+    from robotdesc.mesh.cache import MeshCache, default_cache_dir
+
+    found = link_sources(robot, options.source, package_lookup(robot, package_paths,
+                                                               package_map))
+    if links is not None:
+        known = {s.link for s in found}
+        missing = [name for name in links if name not in known]
+        if missing:
+            raise ValueError(f"no link with {options.source} geometry named "
+                             f"{', '.join(missing)}")
+        found = [s for s in found if s.link in set(links)]
+    root = cache_dir or (default_cache_dir() if use_cache else None)
+    mesh_cache = MeshCache(root) if root else None
+    digest = mesh_cache.content_digest if mesh_cache is not None else file_digest
+    parameters = {**options.key_fields(), "format": CACHE_VERSION}
+    keys = [sources_digest(s, digest, parameters) for s in found]
+    return Plan(found, keys, CollisionCache(root) if (root and use_cache) else None)
+
+
+def _with_limits(outcome: LinkOutcome, options: CollisionOptions) -> LinkOutcome:
+    if not outcome.written:
+        return outcome
+    extra = limit_findings(outcome.parts, options.limits)
+    if not extra:
+        return outcome
+    report = outcome.report
+    status = "failed" if report.status == "failed" else "warning"
+    return replace(outcome, report=replace(report, status=status,
+                                           findings=report.findings + extra))
+
+
+def _failed(link: str, method: str, key: str | None, finding: Finding) -> LinkOutcome:
+    return LinkOutcome(LinkReport(link, method, "failed", findings=(finding,)), (), key or "")

@@ -1,0 +1,96 @@
+"""The parameters of one collision generation run (all frozen, all in the cache key)."""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+
+from robotdesc.collision.limits import EngineLimits
+
+#: The methods, in the order `auto` tries them by default (cheapest for an engine first).
+METHODS = ("decimate", "hull", "coacd", "primitive", "auto")
+PRIMITIVE_KINDS = ("box", "cylinder", "sphere", "capsule")
+
+
+@dataclass(frozen=True)
+class CollisionOptions:
+    """How to make collision geometry.
+
+    Attributes:
+        method: one of METHODS.
+        ratio: decimate: share of the input's faces to keep (0 < ratio <= 1).
+        faces: decimate: face budget per link (overrides `ratio` when set).
+        min_faces: decimate: never aim below this many faces.
+        threshold: coacd: concavity threshold (smaller: more, tighter hulls).
+        max_hulls: coacd: hull count per link (-1: no limit).
+        hull_vertices: coacd: vertices per hull (CoACD simplifies each hull to this).
+        coacd_iterations: coacd: Monte Carlo tree search iterations (its default 150).
+        preprocess_resolution: coacd: voxel resolution of its manifold pre-processing.
+        seed: coacd: random seed (fixed, so outputs are reproducible).
+        primitives: primitive: the kinds tried, among PRIMITIVE_KINDS.
+        target_percent: fidelity target: symmetric Hausdorff distance as % of the link's
+            bounding-box diagonal (decimate results over it are findings; auto picks the
+            first method under it).
+        auto_order: auto: methods tried, in order.
+        samples: surface points sampled per direction for the distances.
+        source: "visual" (derive from the visual meshes, default) or "collision".
+        mesh_timeout_s: wall-clock limit of one link's worker (s).
+        limits: the engine limits checked.
+    """
+
+    method: str = "decimate"
+    ratio: float = 0.02
+    faces: int | None = None
+    min_faces: int = 64
+    threshold: float = 0.05
+    max_hulls: int = 16
+    hull_vertices: int = 64
+    coacd_iterations: int = 150
+    preprocess_resolution: int = 50
+    seed: int = 0
+    primitives: tuple[str, ...] = PRIMITIVE_KINDS
+    target_percent: float = 1.0
+    auto_order: tuple[str, ...] = ("primitive", "hull", "coacd", "decimate")
+    samples: int = 2000
+    source: str = "visual"
+    mesh_timeout_s: float = 300.0
+    limits: EngineLimits = field(default_factory=EngineLimits)
+
+    def validated(self) -> CollisionOptions:
+        """Self, after checking every value.
+
+        Raises:
+            ValueError: a value out of range (the CLI turns it into a usage error).
+        """
+        if self.method not in METHODS:
+            raise ValueError(f"unknown method '{self.method}' (choose from {', '.join(METHODS)})")
+        if not 0 < self.ratio <= 1:
+            raise ValueError(f"ratio must be in (0, 1], got {self.ratio}")
+        if self.faces is not None and self.faces < 4:
+            raise ValueError(f"faces must be at least 4, got {self.faces}")
+        if not 0 < self.threshold <= 1:
+            raise ValueError(f"threshold must be in (0, 1], got {self.threshold}")
+        if self.max_hulls == 0 or self.max_hulls < -1:
+            raise ValueError(f"max hulls must be positive or -1, got {self.max_hulls}")
+        if self.hull_vertices < 4:
+            raise ValueError(f"hull vertices must be at least 4, got {self.hull_vertices}")
+        unknown = [k for k in self.primitives if k not in PRIMITIVE_KINDS]
+        if unknown or not self.primitives:
+            raise ValueError(f"primitives must be among {', '.join(PRIMITIVE_KINDS)}")
+        bad = [m for m in self.auto_order if m not in METHODS or m == "auto"]
+        if bad or not self.auto_order:
+            raise ValueError(f"auto order must list methods among decimate, hull, coacd, "
+                             f"primitive; got {', '.join(self.auto_order)}")
+        if self.target_percent <= 0 or self.samples < 10 or self.mesh_timeout_s <= 0:
+            raise ValueError("target, samples and timeout must be positive")
+        if self.source not in ("visual", "collision"):
+            raise ValueError(f"source must be visual or collision, got {self.source}")
+        return self
+
+    def key_fields(self) -> dict:
+        """The parameters that change the generated geometry (the cache and manifest key)."""
+        data = asdict(self)
+        for name in ("mesh_timeout_s", "limits"):
+            data.pop(name)
+        data["primitives"] = list(self.primitives)
+        data["auto_order"] = list(self.auto_order)
+        return data

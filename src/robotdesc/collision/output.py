@@ -1,0 +1,224 @@
+"""Write a result: mesh files, a new URDF (and for xacro sources a xacro snippet), and the
+manifest; atomically, and never over a file robotdesc did not write.
+
+Layout in the output folder DIR:
+
+    DIR/meshes/<link>.stl            decimate / hull (one mesh per link)
+    DIR/meshes/<link>_<i>.stl        coacd (one convex hull per file, several <collision>)
+    DIR/<robot>.collision.urdf       the description with the new <collision> elements
+    DIR/<robot>.collision.xacro      for xacro sources: one macro per link to paste in
+    DIR/robotdesc-collision.json     the manifest (see manifest.py)
+
+Links that failed keep their original `<collision>` elements and get no files.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import tempfile
+
+from lxml import etree
+
+from robotdesc.collision.manifest import (
+    MANIFEST_NAME,
+    Manifest,
+    read_manifest,
+    sha256_bytes,
+    sha256_file,
+)
+from robotdesc.collision.result import CollisionResult, MeshPart, PrimitivePart
+from robotdesc.collision.stl import stl_bytes
+from robotdesc.errors import InputError
+from robotdesc.model.elements import Box, Capsule, Cylinder, Sphere
+from robotdesc.source import Span
+
+
+class OutputConflict(InputError):
+    """An output would overwrite a file robotdesc did not write (or one a user edited)."""
+
+
+def planned_files(result: CollisionResult, urdf_xml: bytes, out_dir: str,
+                  from_xacro: bool) -> dict[str, bytes]:
+    """Every output file (relative path -> bytes), manifest excluded. Pure."""
+    files: dict[str, bytes] = {}
+    references: dict[str, list[tuple[str, object]]] = {}
+    for outcome in result.outcomes:
+        if not outcome.written:
+            continue
+        stem = _safe(outcome.report.link)
+        meshes = [p for p in outcome.parts if isinstance(p, MeshPart)]
+        elements = []
+        for index, part in enumerate(outcome.parts):
+            if isinstance(part, MeshPart):
+                name = f"meshes/{stem}.stl" if len(meshes) == 1 else f"meshes/{stem}_{index}.stl"
+                files[name] = stl_bytes(part)
+                elements.append((name, part))
+            else:
+                elements.append(("", part))
+        references[outcome.report.link] = elements
+    base = _safe(result.robot.name or "robot")
+    package = _package_prefix(out_dir)
+    files[f"{base}.collision.urdf"] = _new_urdf(urdf_xml, references, package)
+    if from_xacro:
+        files[f"{base}.collision.xacro"] = _xacro_snippet(result, references, package)
+    return files
+
+
+def write_outputs(result: CollisionResult, urdf_xml: bytes, out_dir: str, *,
+                  from_xacro: bool, source_dirs: tuple[str, ...] = (),
+                  allow_source_dir: bool = False) -> list[str]:
+    """Write the planned files and the manifest into `out_dir`; returns the paths written.
+
+    Raises:
+        OutputConflict: `out_dir` holds the source meshes (without `allow_source_dir`), or a
+            planned file exists that robotdesc did not write (or that was edited since).
+            Nothing is written then.
+    """
+    out_dir = os.path.abspath(out_dir)
+    real = os.path.realpath(out_dir)
+    if not allow_source_dir and any(os.path.realpath(d) == real or
+                                    os.path.realpath(d).startswith(real + os.sep)
+                                    for d in source_dirs):
+        raise OutputConflict("the output folder holds source meshes; choose another --out "
+                             "(or pass --into-source-dir)", Span(out_dir))
+    files = planned_files(result, urdf_xml, out_dir, from_xacro)
+    old = read_manifest(out_dir) or Manifest()
+    conflicts = []
+    for name, data in files.items():
+        path = os.path.join(out_dir, name)
+        if not os.path.exists(path):
+            continue
+        current = sha256_file(path)
+        if current != sha256_bytes(data) and old.files.get(name) != current:
+            conflicts.append(name)
+    if os.path.exists(os.path.join(out_dir, MANIFEST_NAME)) and not old.files \
+            and read_manifest(out_dir) is None:
+        conflicts.append(MANIFEST_NAME)
+    if conflicts:
+        raise OutputConflict(f"refusing to overwrite {len(conflicts)} file(s) robotdesc did "
+                             f"not write (or that were edited): {', '.join(sorted(conflicts))}",
+                             Span(out_dir))
+    written = []
+    for name, data in sorted(files.items()):
+        path = os.path.join(out_dir, name)
+        if sha256_file(path) != sha256_bytes(data):
+            _write_atomically(path, data)
+            written.append(path)
+    for name, digest in old.files.items():  # our own files that are no longer produced
+        path = os.path.join(out_dir, name)
+        if name not in files and sha256_file(path) == digest:
+            os.unlink(path)
+    manifest = Manifest(
+        files={name: sha256_bytes(data) for name, data in files.items()},
+        links={o.report.link: {"key": o.key, "status": o.report.status,
+                               "method": o.report.method}
+               for o in result.outcomes if o.written},
+        source=os.path.relpath(result.robot.source, out_dir) if result.robot.source else "",
+        parameters=result.options.key_fields())
+    _write_atomically(os.path.join(out_dir, MANIFEST_NAME), manifest.to_json())
+    return written
+
+
+def _new_urdf(urdf_xml: bytes, references: dict, package: str | None) -> bytes:
+    from robotdesc.model.parse import strip_provenance
+
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, remove_blank_text=False)
+    root = etree.fromstring(strip_provenance(urdf_xml), parser)
+    for link in root.findall("link"):
+        elements = references.get(link.get("name", ""))
+        if elements is None:
+            continue
+        old = link.findall("collision")
+        anchor = link.index(old[0]) if old else len(link)
+        tail = old[0].tail if old else "\n    "
+        for element in old:
+            link.remove(element)
+        for offset, (name, part) in enumerate(elements):
+            new = _collision_element(link.get("name", ""), offset, name, part, package)
+            new.tail = tail
+            link.insert(anchor + offset, new)
+    return etree.tostring(root, xml_declaration=True, encoding="utf-8") + b"\n"
+
+
+def _collision_element(link: str, index: int, filename: str, part: object,
+                       package: str | None) -> etree._Element:
+    element = etree.Element("collision", name=f"{link}_collision_{index}")
+    origin = etree.SubElement(element, "origin")
+    geometry = etree.SubElement(element, "geometry")
+    if isinstance(part, PrimitivePart):
+        origin.set("xyz", _vec(part.origin.xyz))
+        origin.set("rpy", _vec(part.origin.rpy))
+        shape = part.geometry
+        if isinstance(shape, Box):
+            etree.SubElement(geometry, "box", size=_vec(shape.size))
+        elif isinstance(shape, Sphere):
+            etree.SubElement(geometry, "sphere", radius=_num(shape.radius))
+        elif isinstance(shape, (Cylinder, Capsule)):
+            tag = "cylinder" if isinstance(shape, Cylinder) else "capsule"
+            etree.SubElement(geometry, tag, radius=_num(shape.radius),
+                             length=_num(shape.length))
+    else:
+        origin.set("xyz", "0 0 0")
+        origin.set("rpy", "0 0 0")
+        etree.SubElement(geometry, "mesh", filename=f"{package}{filename}" if package
+                         else filename)
+    return element
+
+
+def _xacro_snippet(result: CollisionResult, references: dict, package: str | None) -> bytes:
+    lines = ['<?xml version="1.0" encoding="utf-8"?>',
+             "<!-- Generated by `robotdesc collision`. In each link, replace its <collision>",
+             "     elements (where listed) by a call <xacro:NAME_collision/>. -->",
+             '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">']
+    for link_name, elements in references.items():
+        link = result.robot.link(link_name)
+        where = [str(c.where) for c in (link.collisions if link else ()) if c.where]
+        lines.append(f"  <!-- {link_name}: replaces the <collision> at "
+                     f"{', '.join(where) or '(none: add the call to the link)'} -->")
+        lines.append(f'  <xacro:macro name="{_safe(link_name)}_collision">')
+        for offset, (name, part) in enumerate(elements):
+            text = etree.tostring(_collision_element(link_name, offset, name, part, package),
+                                  encoding="unicode")
+            lines.append(f"    {text}")
+        lines.append("  </xacro:macro>")
+    lines.append("</robot>")
+    return ("\n".join(lines) + "\n").encode()
+
+
+def _package_prefix(out_dir: str) -> str | None:
+    """`package://pkg/rel/` when the folder is inside a ROS package, else None (relative)."""
+    from robotdesc.expansion.packages import enclosing_package
+
+    found = enclosing_package(out_dir)
+    if found is None:
+        return None
+    name, root = found
+    relative = os.path.relpath(os.path.realpath(out_dir), os.path.realpath(root))
+    relative = "" if relative == "." else relative.replace(os.sep, "/") + "/"
+    return f"package://{name}/{relative}"
+
+
+def _write_atomically(path: str, data: bytes) -> None:
+    folder = os.path.dirname(path)
+    os.makedirs(folder, exist_ok=True)
+    handle, temporary = tempfile.mkstemp(prefix=".robotdesc-", dir=folder)
+    try:
+        with os.fdopen(handle, "wb") as stream:
+            stream.write(data)
+        os.replace(temporary, path)
+    finally:
+        if os.path.exists(temporary):
+            os.unlink(temporary)
+
+
+def _safe(name: str) -> str:
+    return re.sub(r"[^A-Za-z0-9_.-]", "_", name) or "link"
+
+
+def _num(value: float) -> str:
+    return f"{float(value):.9g}"
+
+
+def _vec(values) -> str:
+    return " ".join(_num(v) for v in values)

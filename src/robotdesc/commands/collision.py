@@ -1,0 +1,173 @@
+"""`robotdesc collision FILE --method M --out DIR [--check]`: collision geometry, measured.
+
+Exit codes: 0 every link written and within targets and limits (with --check: outputs
+current); 1 a link failed, exceeded a limit or the target, or (--check) outputs are stale;
+2 the description could not be read, an option is invalid, or an output would overwrite a
+file robotdesc did not write.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+
+def register(subparsers, *, common, expansion) -> None:
+    parser = subparsers.add_parser(
+        "collision", parents=[common, expansion], help="make collision meshes, measured",
+        description="Make collision geometry per link (decimate, hull, coacd, primitive, "
+                    "auto) from the visual meshes, measure its fidelity, write it to DIR.")
+    parser.add_argument("inputs", nargs="+", metavar="FILE | name:=value",
+                        help="the description, then xacro arguments")
+    parser.add_argument("--method", default="decimate",
+                        choices=("decimate", "hull", "coacd", "primitive", "auto"))
+    parser.add_argument("--out", metavar="DIR", help="output folder (required unless "
+                        "only reporting with --dry-run)")
+    parser.add_argument("--check", action="store_true",
+                        help="do not write: exit 1 when the outputs in DIR are missing or stale")
+    parser.add_argument("--dry-run", action="store_true", help="report only, write nothing")
+    parser.add_argument("--link", action="append", default=None, metavar="NAME",
+                        help="only this link (repeatable)")
+    parser.add_argument("--source", choices=("visual", "collision"), default="visual",
+                        help="derive from the visual (default) or the collision meshes")
+    parser.add_argument("--ratio", type=float, default=0.02,
+                        help="decimate: share of faces kept (default 0.02)")
+    parser.add_argument("--faces", type=int, help="decimate: face budget per link")
+    parser.add_argument("--threshold", type=float, default=0.05,
+                        help="coacd: concavity threshold (default 0.05)")
+    parser.add_argument("--max-hulls", type=int, default=16,
+                        help="coacd: hulls per link, -1 for no limit (default 16)")
+    parser.add_argument("--hull-vertices", type=int, default=64,
+                        help="coacd: vertices per hull (default 64)")
+    parser.add_argument("--seed", type=int, default=0, help="coacd: random seed (default 0)")
+    parser.add_argument("--primitives", default="box,cylinder,sphere,capsule",
+                        help="primitive: kinds tried (comma-separated)")
+    parser.add_argument("--target", type=float, default=1.0, metavar="PERCENT",
+                        help="fidelity target: Hausdorff distance in %% of the link's "
+                             "bounding diagonal (default 1)")
+    parser.add_argument("--engine", choices=("physx", "mujoco", "bullet"), default="physx",
+                        help="engine limits to check (default physx)")
+    parser.add_argument("--limit-hulls", type=int, help="override the engine's hulls per link")
+    parser.add_argument("--limit-hull-vertices", type=int,
+                        help="override the engine's vertices per hull")
+    parser.add_argument("--jobs", "-j", type=int, help="worker processes (default: all cores)")
+    parser.add_argument("--mesh-timeout", type=float, default=300.0, metavar="SECONDS",
+                        help="wall-clock limit per link (default 300)")
+    parser.add_argument("--format", choices=("text", "json"), default="text")
+    parser.add_argument("--into-source-dir", action="store_true",
+                        help="allow DIR to be a folder holding source meshes")
+    parser.set_defaults(handler=run)
+
+
+def run(ns: argparse.Namespace) -> int:
+    import json
+    import os
+    from dataclasses import replace
+
+    from robotdesc.cli import EXIT_FINDINGS, EXIT_OK, _expand_options, _split_inputs
+    from robotdesc.collision.limits import ENGINE_LIMITS
+    from robotdesc.collision.options import CollisionOptions
+    from robotdesc.config import discover_config, load_config
+    from robotdesc.errors import UsageError
+    from robotdesc.expansion import expand_file
+    from robotdesc.model.parse import parse_urdf
+
+    paths, args = _split_inputs(ns.inputs)
+    if len(paths) != 1:
+        raise UsageError(f"collision takes one file, got {len(paths)}")
+    if not ns.out and not ns.dry_run:
+        raise UsageError("--out DIR is required (or --dry-run)")
+    limits = ENGINE_LIMITS[ns.engine]
+    if ns.limit_hulls is not None or ns.limit_hull_vertices is not None:
+        limits = replace(limits, name="custom",
+                         max_hulls=ns.limit_hulls or limits.max_hulls,
+                         max_hull_vertices=ns.limit_hull_vertices or limits.max_hull_vertices)
+    try:
+        options = CollisionOptions(
+            method=ns.method, ratio=ns.ratio, faces=ns.faces, threshold=ns.threshold,
+            max_hulls=ns.max_hulls, hull_vertices=ns.hull_vertices, seed=ns.seed,
+            primitives=tuple(p.strip() for p in ns.primitives.split(",") if p.strip()),
+            target_percent=ns.target, source=ns.source, mesh_timeout_s=ns.mesh_timeout,
+            limits=limits).validated()
+    except ValueError as error:
+        raise UsageError(str(error)) from None
+    if ns.jobs is not None and ns.jobs < 1:
+        raise UsageError("--jobs must be at least 1")
+    source = paths[0]
+    config = load_config(ns.config) if ns.config else discover_config(source)
+    expand_options = _expand_options(ns, config.packages)
+    expanded = expand_file(source, {**dict(config.args), **args}, options=expand_options)
+    robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
+    package_paths = expand_options.package_paths
+    package_map = expand_options.package_map
+
+    if ns.check:
+        from robotdesc.collision.check import check_outputs
+        from robotdesc.collision.generate import plan_links
+
+        plan = plan_links(robot, options, package_paths, package_map, ns.link,
+                          use_cache=not ns.no_cache)
+        stale = check_outputs(plan, ns.out)
+        for item in stale:
+            sys.stdout.write(f"{item.subject}: {item.reason}\n")
+        if not stale:
+            sys.stdout.write(f"collision outputs in {ns.out} are up to date\n")
+        return EXIT_FINDINGS if stale else EXIT_OK
+
+    from robotdesc.collision.generate import generate_collision
+
+    try:
+        with _progress(sys.stderr) as progress:
+            result = generate_collision(robot, options=options, method=options.method,
+                                        package_paths=package_paths, package_map=package_map,
+                                        links=ns.link, jobs=ns.jobs,
+                                        use_cache=not ns.no_cache, progress=progress)
+    except ValueError as error:
+        raise UsageError(str(error)) from None
+    if ns.out and not ns.dry_run:
+        from robotdesc.collision.output import write_outputs
+        from robotdesc.collision.sources import link_sources, package_lookup
+
+        found = link_sources(robot, options.source,
+                             package_lookup(robot, package_paths, package_map))
+        dirs = tuple(sorted({os.path.dirname(p) for s in found for p in s.mesh_paths}))
+        write_outputs(result, expanded.xml, ns.out, from_xacro=expanded.from_xacro,
+                      source_dirs=dirs, allow_source_dir=ns.into_source_dir)
+    if ns.format == "json":
+        sys.stdout.write(json.dumps(result.to_dict(), indent=2) + "\n")
+    else:
+        from robotdesc.collision.report import render_table
+
+        sys.stdout.write(render_table(result))
+    return EXIT_FINDINGS if result.failed else EXIT_OK
+
+
+class _progress:
+    """A rich progress bar on a terminal; nothing otherwise. Yields the callback."""
+
+    def __init__(self, stream) -> None:
+        self.stream = stream
+        self.bar = None
+        self.task = None
+
+    def __enter__(self):
+        if not getattr(self.stream, "isatty", lambda: False)():
+            return None
+        from rich.console import Console
+        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, \
+            TimeElapsedColumn
+
+        self.bar = Progress(TextColumn("collision"), BarColumn(), MofNCompleteColumn(),
+                            TimeElapsedColumn(), TextColumn("{task.description}"),
+                            console=Console(file=self.stream), transient=True)
+        self.bar.__enter__()
+        self.task = self.bar.add_task("", total=None)
+
+        def update(done: int, total: int, link: str) -> None:
+            self.bar.update(self.task, completed=done, total=total, description=link)
+
+        return update
+
+    def __exit__(self, *exc) -> None:
+        if self.bar is not None:
+            self.bar.__exit__(*exc)

@@ -1,0 +1,125 @@
+"""`robotdesc inertia FILE`: per link, the declared inertial against the one of its geometry;
+`--suggest` prints corrected `<inertial>` blocks, `--write PATCH` writes them as a diff.
+
+Heavy modules (numpy, the mesh readers) are imported inside the handler.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from typing import Any
+
+
+def register(subparsers: Any, *, common: argparse.ArgumentParser,
+             expansion: argparse.ArgumentParser) -> None:
+    """Add the `inertia` subcommand."""
+    parser = subparsers.add_parser(
+        "inertia", parents=[common, expansion], help="compare inertials with the geometry",
+        description="Per link: declared mass, centre of mass and principal moments against "
+                    "those of its collision (or visual) geometry at uniform density.")
+    parser.add_argument("inputs", nargs="+", metavar="FILE | name:=value",
+                        help="the URDF/xacro file, then xacro arguments")
+    parser.add_argument("--format", choices=("text", "json"), default="text",
+                        help="output format (default: text)")
+    parser.add_argument("--source", choices=("collision", "visual"),
+                        help="geometry to measure (default: config, else collision)")
+    parser.add_argument("--suggest", action="store_true",
+                        help="print a corrected <inertial> block per link, with the source "
+                             "line it replaces")
+    parser.add_argument("--write", metavar="PATCH",
+                        help="write the suggested blocks as a unified diff against the "
+                             "sources to PATCH (the sources are not changed)")
+    parser.add_argument("--all", action="store_true",
+                        help="suggest for every measured link, not only those that differ")
+    parser.set_defaults(handler=run_inertia)
+
+
+def run_inertia(ns: argparse.Namespace) -> int:
+    """The handler: expand, parse, measure, print; exit 0 (2 on unreadable input)."""
+    import dataclasses
+
+    from robotdesc.cli import _expand_options, _split_inputs, _write_atomically
+    from robotdesc.config import discover_config, load_config
+    from robotdesc.errors import UsageError
+    from robotdesc.expansion import expand_file
+    from robotdesc.inertia.table import inertia_table, render_table
+    from robotdesc.mesh.context import MeshContext
+    from robotdesc.model.parse import parse_urdf
+
+    paths, args = _split_inputs(ns.inputs)
+    if len(paths) != 1:
+        raise UsageError(f"inertia takes one file, got {len(paths)}")
+    source = paths[0]
+    config = load_config(ns.config) if ns.config else discover_config(source)
+    options = _expand_options(ns, config.packages)
+    expanded = expand_file(source, {**dict(config.args), **args}, options=options)
+    robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
+    settings = config.meshes if not ns.source else dataclasses.replace(
+        config.meshes, inertia_source=ns.source)
+    meshes = MeshContext.for_file(robot, source, settings, tuple(options.package_paths),
+                                  tuple(options.package_map))
+    rows = inertia_table(robot, meshes)
+    suggestions = _suggestions(robot, meshes, rows, everything=ns.all) \
+        if ns.suggest or ns.write else []
+    if ns.format == "json":
+        document = {"target": source, "source": settings.inertia_source,
+                    "links": [row.to_json() for row in rows]}
+        if ns.suggest or ns.write:
+            document["suggestions"] = [_suggestion_json(s) for s in suggestions]
+        sys.stdout.write(json.dumps(document, indent=2) + "\n")
+    elif ns.suggest:
+        sys.stdout.write(_render_suggestions(suggestions))
+    else:
+        sys.stdout.write(render_table(rows))
+    if ns.write:
+        from robotdesc.inertia.patch import build_patch
+
+        patch = build_patch(suggestions)
+        _write_atomically(ns.write, patch.diff.encode("utf-8"))
+        for link, reason in patch.skipped:
+            sys.stderr.write(f"robotdesc: not patched: link '{link}': {reason}\n")
+        sys.stderr.write(f"robotdesc: wrote {ns.write} ({len(patch.changed)} blocks)\n")
+    return 0
+
+
+def _suggestions(robot, meshes, rows, everything: bool) -> list:
+    from robotdesc.inertia.suggest import suggest_inertial
+
+    wanted = {row.link for row in rows
+              if everything or row.error is None or row.error > 0.5}
+    found = []
+    for link in robot.links:
+        geometry = meshes.link_geometry(link)
+        if link.name not in wanted or not geometry.trusted:
+            continue
+        if not everything and link.inertial is not None and _agrees(rows, link.name):
+            continue
+        found.append(suggest_inertial(link, geometry.properties))
+    return found
+
+
+def _agrees(rows, name: str) -> bool:
+    row = next((r for r in rows if r.link == name), None)
+    return row is not None and row.error is not None and row.error <= 0.5
+
+
+def _render_suggestions(suggestions) -> str:
+    out = []
+    for item in suggestions:
+        where = (f"replaces the <inertial> at {item.replaces}" if item.replaces
+                 else f"add inside the <link> at {item.link_span}" if item.link_span
+                 else "add inside the link")
+        out.append(f"<!-- link '{item.link}': {where}"
+                   + ("; written inside a xacro macro" if item.in_macro else "") + " -->")
+        out.append(item.block)
+        out.append("")
+    return "\n".join(out) + ("\n" if out else "")
+
+
+def _suggestion_json(item) -> dict:
+    return {"link": item.link, "block": item.block,
+            "replaces": str(item.replaces) if item.replaces else None,
+            "link_at": str(item.link_span) if item.link_span else None,
+            "mass_source": item.mass_source, "in_macro": item.in_macro}

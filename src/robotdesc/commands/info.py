@@ -1,0 +1,103 @@
+"""`robotdesc info FILE`: links, joints by type, degrees of freedom, mimic joints, total mass,
+centre of mass (at zero and at `--q name=value ...`) and bounding box; table or JSON.
+
+Needs Pinocchio (`pip install 'robotdesc[kinematics]'`); imported inside the handler.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from typing import Any
+
+
+def register(subparsers: Any, *, common: argparse.ArgumentParser,
+             expansion: argparse.ArgumentParser) -> None:
+    """Add the `info` subcommand."""
+    parser = subparsers.add_parser(
+        "info", parents=[common, expansion], help="kinematic and mass summary (Pinocchio)",
+        description="Links, joints by type, degrees of freedom, mimic joints, total mass, "
+                    "centre of mass and bounding box, computed with Pinocchio "
+                    "(install: pip install 'robotdesc[kinematics]').")
+    parser.add_argument("inputs", nargs="+", metavar="FILE | name:=value",
+                        help="the URDF/xacro file, then xacro arguments")
+    parser.add_argument("--q", nargs="+", default=[], metavar="JOINT=VALUE",
+                        help="joint positions (rad or m) for the centre of mass at a "
+                             "configuration")
+    parser.add_argument("--format", choices=("text", "json"), default="text",
+                        help="output format (default: text)")
+    parser.set_defaults(handler=run_info)
+
+
+def load_robot(ns: argparse.Namespace, verb: str) -> tuple[Any, Any, str]:
+    """Expand and parse the one input file; returns (robot, mesh resolver, source path)."""
+    from robotdesc.cli import _expand_options, _split_inputs
+    from robotdesc.config import discover_config, load_config
+    from robotdesc.errors import UsageError
+    from robotdesc.expansion import expand_file
+    from robotdesc.kinematics.resolve import mesh_resolver, package_lookup
+    from robotdesc.model.parse import parse_urdf
+
+    paths, args = _split_inputs(ns.inputs)
+    if len(paths) != 1:
+        raise UsageError(f"{verb} takes one file, got {len(paths)}: {' '.join(paths)}")
+    source = paths[0]
+    config = load_config(ns.config) if ns.config else discover_config(source)
+    options = _expand_options(ns, config.packages)
+    expanded = expand_file(source, {**dict(config.args), **args}, options=options)
+    robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
+    find = package_lookup(expanded.source, options.package_paths, options.package_map)
+    return robot, mesh_resolver(robot, find), source
+
+
+def parse_positions(items: list[str]) -> dict[str, float]:
+    """`name=value` pairs (rad or m) into a dict."""
+    from robotdesc.errors import UsageError
+
+    positions = {}
+    for item in items:
+        name, sep, value = item.partition("=")
+        try:
+            positions[name.strip()] = float(value)
+        except ValueError:
+            sep = ""
+        if not sep or not name.strip():
+            raise UsageError(f"--q: expected JOINT=VALUE, got '{item}'")
+    return positions
+
+
+def run_info(ns: argparse.Namespace) -> int:
+    """The handler: expand, build with Pinocchio, print; exit 0 (2 on unusable input)."""
+    from robotdesc.kinematics.info import robot_info
+    from robotdesc.kinematics.optional import import_pinocchio
+
+    import_pinocchio("robotdesc info")
+    positions = parse_positions(ns.q)
+    robot, mesh_path, _ = load_robot(ns, "info")
+    info = robot_info(robot, mesh_path, positions or None)
+    if ns.format == "json":
+        sys.stdout.write(json.dumps(info.to_dict(), indent=2) + "\n")
+    else:
+        sys.stdout.write(render_info(info))
+    return 0
+
+
+def render_info(info: Any) -> str:
+    """The info as an aligned two-column table."""
+    def vec(values) -> str:
+        return "(" + ", ".join(f"{v:.4f}" for v in values) + ") m"
+
+    rows = [("robot", info.name), ("links", str(info.links)),
+            ("joints", ", ".join(f"{n} {t}" for t, n in info.joints_by_type) or "none"),
+            ("degrees of freedom", str(info.dof)),
+            ("mimic joints", ", ".join(f"{m.joint} = {m.multiplier:g} * {m.driver} "
+                                       f"+ {m.offset:g}" for m in info.mimic) or "none"),
+            ("total mass", f"{info.total_mass:.4f} kg"),
+            ("centre of mass at zero", vec(info.com_zero))]
+    if info.com_at is not None:
+        rows.append(("centre of mass at --q", vec(info.com_at)))
+    rows.append(("bounding box (collision)", f"{vec(info.bounds[0])} .. {vec(info.bounds[1])}"
+                 if info.bounds else "no collision geometry"))
+    width = max(len(label) for label, _ in rows)
+    return "".join(f"{label.ljust(width)}  {value}\n" for label, value in rows)

@@ -1,0 +1,162 @@
+"""Compare a declared inertia with the one derived from the link's geometry, and name the
+likely cause of a mismatch when the numbers say so.
+
+Units: kg, m, kg*m^2. Both tensors are about the centre of mass, in link-frame axes.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from robotdesc.mesh.mass import MassProperties, rpy_matrix
+from robotdesc.model.elements import Inertial
+
+#: Powers of ten that a unit slip of the tensor produces, and the slip that gives each.
+UNIT_SLIPS = {
+    9: "the tensor looks like g*mm^2 (1e9 times kg*m^2)",
+    7: "the tensor looks like g*cm^2 (1e7 times kg*m^2)",
+    6: "the tensor looks like kg*mm^2 (1e6 times kg*m^2)",
+    4: "the tensor looks like kg*cm^2 (1e4 times kg*m^2)",
+    3: "the tensor looks like g*m^2, or it was computed with the mass in grams (1e3 times)",
+    -3: "the tensor is 1e3 times too small: was the mass divided by 1000 twice?",
+    -6: "the geometry is about 1000 times too large: a mesh in millimetres (at a fixed mass, "
+        "moments grow with the square of the length)",
+    -4: "the geometry is about 100 times too large: a mesh in centimetres",
+}
+#: How close log10 of the ratio must be to the power of ten.
+SLIP_SLACK = 0.15
+
+
+@dataclass(frozen=True)
+class InertiaComparison:
+    """A declared inertia against the geometry's.
+
+    Attributes:
+        declared: declared tensor about the COM, link-frame axes (kg*m^2).
+        derived: geometry tensor at the declared mass, about its COM, link axes (kg*m^2).
+        declared_moments: principal moments of `declared`, ascending (kg*m^2).
+        derived_moments: principal moments of `derived`, ascending (kg*m^2).
+        moment_errors: per principal moment, |declared - derived| / derived.
+        tensor_error: ||declared - derived|| / ||derived|| (Frobenius norms).
+        cause: the likely cause of the mismatch, when the numbers point to one.
+    """
+
+    declared: np.ndarray
+    derived: np.ndarray
+    declared_moments: tuple[float, float, float]
+    derived_moments: tuple[float, float, float]
+    moment_errors: tuple[float, float, float]
+    tensor_error: float
+    cause: str | None = None
+
+    def mismatch(self, tolerance: float) -> bool:
+        """Whether the tensors differ beyond `tolerance` (relative)."""
+        return max(self.moment_errors) > tolerance or self.tensor_error > tolerance
+
+
+def declared_tensor(inertial: Inertial) -> np.ndarray:
+    """The declared tensor rotated from the `<inertial><origin rpy>` frame into link axes."""
+    rotation = rpy_matrix(inertial.origin.rpy)
+    return rotation @ np.array(inertial.inertia.matrix(), dtype=float) @ rotation.T
+
+
+def compare_inertia(inertial: Inertial, geometry: MassProperties,
+                    tolerance: float) -> InertiaComparison:
+    """Compare a declared inertial (with positive mass) with the geometry at that mass.
+
+    Args:
+        inertial: the declared `<inertial>` (mass and inertia present).
+        geometry: the link's geometry at density 1 (link frame).
+        tolerance: the relative tolerance the cause analysis uses.
+    """
+    declared = declared_tensor(inertial)
+    derived = geometry.scaled_to_mass(inertial.mass).inertia_matrix()
+    dm = _moments(declared)
+    gm = _moments(derived)
+    errors = tuple(abs(d - g) / g if g > 0 else math.inf for d, g in zip(dm, gm))
+    norm = float(np.linalg.norm(derived))
+    tensor_error = float(np.linalg.norm(declared - derived)) / norm if norm > 0 else math.inf
+    result = InertiaComparison(declared, derived, dm, gm, errors, tensor_error)  # type: ignore[arg-type]
+    if not result.mismatch(tolerance):
+        return result
+    return InertiaComparison(declared, derived, dm, gm, errors, tensor_error,  # type: ignore[arg-type]
+                             likely_cause(declared, derived, dm, gm, tolerance))
+
+
+def likely_cause(declared: np.ndarray, derived: np.ndarray, declared_moments, derived_moments,
+                 tolerance: float) -> str | None:
+    """Name the slip that turns `derived` into `declared`, if one does (see UNIT_SLIPS)."""
+    if not np.any(declared):
+        return "the declared tensor is zero (a point mass)"
+    slip = unit_slip(declared_moments, derived_moments)
+    if slip is not None:
+        return UNIT_SLIPS[slip]
+    norm = float(np.linalg.norm(derived))
+    flipped = sign_flip(declared, derived, tolerance * norm)
+    if flipped:
+        return (f"the sign of {', '.join(flipped)} is swapped: URDF's products are "
+                "-integral(x*y dm), while CAD tools (SolidWorks, Onshape, Fusion) list "
+                "+integral(x*y dm)")
+    moment_errors = [abs(d - g) / g for d, g in zip(declared_moments, derived_moments) if g > 0]
+    if moment_errors and max(moment_errors) <= tolerance:
+        return ("the principal moments agree but the axes do not: the tensor is given in a "
+                "rotated frame (check <inertial><origin rpy>, or the CAD output frame)")
+    return None
+
+
+def unit_slip(declared_moments, derived_moments) -> int | None:
+    """The power of ten k with declared ~ 10^k * derived for all three moments, if it is a
+    known slip."""
+    if min(derived_moments) <= 0 or min(declared_moments) <= 0:
+        return None
+    logs = [math.log10(d / g) for d, g in zip(declared_moments, derived_moments)]
+    power = round(sum(logs) / 3)
+    if power in UNIT_SLIPS and all(abs(v - power) <= SLIP_SLACK for v in logs):
+        return power
+    return None
+
+
+def sign_flip(declared: np.ndarray, derived: np.ndarray, slack: float) -> tuple[str, ...]:
+    """The products of inertia whose sign, flipped, makes `declared` match `derived`."""
+    names = {(0, 1): "ixy", (0, 2): "ixz", (1, 2): "iyz"}
+    best: tuple[float, tuple[str, ...]] = (float(np.linalg.norm(declared - derived)), ())
+    for count in (1, 2, 3):
+        for chosen in itertools.combinations(names, count):
+            candidate = declared.copy()
+            for i, j in chosen:
+                candidate[i, j] = candidate[j, i] = -candidate[i, j]
+            error = float(np.linalg.norm(candidate - derived))
+            if error < best[0]:
+                best = (error, tuple(names[c] for c in chosen))
+    if best[1] and best[0] <= slack:
+        significant = [n for n in best[1] if abs(_product(declared, n)) > 0]
+        return tuple(significant)
+    return ()
+
+
+def _product(matrix: np.ndarray, name: str) -> float:
+    index = {"ixy": (0, 1), "ixz": (0, 2), "iyz": (1, 2)}[name]
+    return float(matrix[index])
+
+
+def _moments(matrix: np.ndarray) -> tuple[float, float, float]:
+    values = np.linalg.eigvalsh(matrix)
+    return (float(values[0]), float(values[1]), float(values[2]))
+
+
+def mirror_partner(name: str, names: set[str]) -> str | None:
+    """The name of the left/right mirror of a link, when the robot has one."""
+    pairs = (("left", "right"), ("Left", "Right"), ("LEFT", "RIGHT"), ("l_", "r_"),
+             ("_l_", "_r_"), ("_l", "_r"), ("L_", "R_"), ("_L", "_R"), ("lf", "rf"),
+             ("lh", "rh"), ("Left", "Right"))
+    for a, b in pairs:
+        for this, that in ((a, b), (b, a)):
+            if this in name:
+                candidate = name.replace(this, that, 1)
+                if candidate != name and candidate in names:
+                    return candidate
+    return None

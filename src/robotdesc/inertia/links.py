@@ -1,0 +1,54 @@
+"""Which links move, which is the root, and whether a description is meant for dynamics.
+
+Pure functions of the model; shared by the inertia rules, the mesh rules and the inertia
+command.
+"""
+
+from __future__ import annotations
+
+from robotdesc.model.elements import Joint, Link, Robot
+
+
+def parent_joints(robot: Robot) -> dict[str, Joint]:
+    """Child link name -> the (first) joint that has it as its child."""
+    found: dict[str, Joint] = {}
+    for joint in robot.joints:
+        found.setdefault(joint.child, joint)
+    return found
+
+
+def is_moving(link: Link, parents: dict[str, Joint]) -> bool:
+    """The link is the child of a joint that is not fixed."""
+    joint = parents.get(link.name)
+    return joint is not None and joint.type != "fixed"
+
+
+def root_links(robot: Robot) -> list[Link]:
+    """Links that are no joint's child but are some joint's parent (or the only link)."""
+    children = {j.child for j in robot.joints}
+    parents = {j.parent for j in robot.joints}
+    roots = [link for link in robot.links if link.name not in children and link.name in parents]
+    if not roots and len(robot.links) == 1:
+        roots = list(robot.links)
+    return roots
+
+
+def has_mass(link: Link) -> bool:
+    """The link declares a positive mass."""
+    return link.inertial is not None and link.inertial.mass is not None \
+        and link.inertial.mass > 0
+
+
+def is_dynamics_model(robot: Robot) -> bool:
+    """The description is meant for dynamics: at least one moving link declares a mass.
+
+    A purely kinematic description (for a viewer or a planner) declares none; the rules
+    about missing inertia do not apply to it.
+    """
+    parents = parent_joints(robot)
+    return any(is_moving(link, parents) and has_mass(link) for link in robot.links)
+
+
+def link_element(link: Link) -> str:
+    """The stable element name of a link's inertial."""
+    return f"link:{link.name}/inertial"

@@ -1,0 +1,112 @@
+"""The per-link inertia table of `robotdesc inertia`: declared against geometry-derived.
+
+Units: kg, m, m^3, kg/m^3, kg*m^2. Mass properties from geometry assume uniform density at
+the declared mass (the geometry alone says nothing about mass, only about its distribution).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from robotdesc.inertia.compare import compare_inertia
+from robotdesc.mesh.context import MeshContext
+from robotdesc.model.elements import Robot
+
+Vec3 = tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class InertiaRow:
+    """One link of the table.
+
+    Attributes:
+        link: the link's name.
+        source: geometry measured ("collision", "visual", "" for none).
+        declared_mass: kg, None when not declared.
+        volume: m^3 of the measured geometry, None when not measured.
+        density: declared mass / volume (kg/m^3), None when either is missing.
+        declared_com / derived_com: centre of mass in the link frame (m).
+        declared_moments / derived_moments: principal moments, ascending (kg*m^2); the
+            derived ones at the declared mass.
+        error: the largest relative difference of a principal moment, None if not compared.
+        cause: the likely cause of a difference, when one is recognised.
+        notes: how the geometry was measured, and what could not be.
+    """
+
+    link: str
+    source: str
+    declared_mass: float | None
+    volume: float | None
+    density: float | None
+    declared_com: Vec3 | None
+    derived_com: Vec3 | None
+    declared_moments: Vec3 | None
+    derived_moments: Vec3 | None
+    error: float | None
+    cause: str | None
+    notes: tuple[str, ...] = ()
+
+    def to_json(self) -> dict[str, Any]:
+        return {k: (list(v) if isinstance(v, tuple) else v) for k, v in vars(self).items()}
+
+
+def inertia_table(robot: Robot, meshes: MeshContext, tolerance: float = 0.5) -> list[InertiaRow]:
+    """One row per link that declares an inertial or has geometry."""
+    from robotdesc.inertia.tensor import principal_moments
+
+    rows = []
+    for link in robot.links:
+        inertial = link.inertial
+        geometry = meshes.link_geometry(link)
+        if inertial is None and geometry.properties is None:
+            continue
+        mass = inertial.mass if inertial is not None else None
+        props = geometry.properties
+        volume = props.volume if props is not None else None
+        density = mass / volume if mass is not None and volume else None
+        declared_moments = (principal_moments(inertial.inertia.matrix())
+                            if inertial is not None and inertial.inertia is not None else None)
+        derived_moments = error = cause = None
+        if props is not None and mass is not None and mass > 0:
+            derived_moments = props.scaled_to_mass(mass).principal_moments()
+            if declared_moments is not None and geometry.trusted:
+                comparison = compare_inertia(inertial, props, tolerance)
+                error = max(comparison.moment_errors)
+                cause = comparison.cause
+        notes = geometry.notes + tuple(f"not measured: {u}" for u in geometry.unmeasured)
+        rows.append(InertiaRow(
+            link.name, geometry.source, mass, volume, density,
+            inertial.origin.xyz if inertial is not None else None,
+            props.center_of_mass if props is not None else None,
+            declared_moments, derived_moments, error, cause, notes))
+    return rows
+
+
+def render_table(rows: list[InertiaRow]) -> str:
+    """The rows as a fixed-width text table (one line per link, notes indented below)."""
+    header = ("LINK", "SOURCE", "MASS kg", "VOLUME m^3", "DENSITY", "COM declared",
+              "COM geometry", "MOMENTS declared", "MOMENTS geometry", "ERROR")
+    cells = [header]
+    for row in rows:
+        cells.append((row.link, row.source or "-", _num(row.declared_mass), _num(row.volume),
+                      _num(row.density), _vec(row.declared_com), _vec(row.derived_com),
+                      _vec(row.declared_moments), _vec(row.derived_moments),
+                      "-" if row.error is None else f"{100 * row.error:.3g}%"))
+    widths = [max(len(line[i]) for line in cells) for i in range(len(header))]
+    out = []
+    for index, line in enumerate(cells):
+        out.append("  ".join(c.ljust(w) for c, w in zip(line, widths)).rstrip())
+        if index:
+            row = rows[index - 1]
+            out.extend(f"    {note}" for note in ((f"likely cause: {row.cause}",)
+                                                  if row.cause else ()) + row.notes)
+    return "\n".join(out) + "\n"
+
+
+def _num(value: float | None) -> str:
+    return "-" if value is None else f"{value:.4g}"
+
+
+def _vec(values) -> str:
+    return "-" if values is None else " ".join(f"{v:.4g}" for v in values)

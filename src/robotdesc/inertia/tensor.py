@@ -1,0 +1,86 @@
+"""Pure-Python arithmetic on symmetric 3x3 inertia tensors (kg*m^2), no numpy needed.
+
+The structural inertia rules run on every lint, so they avoid importing numpy.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Sequence
+
+Vec3 = tuple[float, float, float]
+Mat3 = tuple[Vec3, Vec3, Vec3]
+
+#: The densest element (osmium, kg/m^3): no solid is denser.
+MAX_MATERIAL_DENSITY = 22_600.0
+
+
+def principal_moments(matrix: Sequence[Sequence[float]]) -> Vec3:
+    """Eigenvalues of a symmetric 3x3 matrix, ascending (closed form, trigonometric method).
+
+    Args:
+        matrix: rows ((Ixx, Ixy, Ixz), (Ixy, Iyy, Iyz), (Ixz, Iyz, Izz)) in kg*m^2.
+    """
+    (a, d, e), (_, b, f), (_, _, c) = matrix
+    off = d * d + e * e + f * f
+    if off == 0.0:
+        x, y, z = sorted((float(a), float(b), float(c)))
+        return (x, y, z)
+    q = (a + b + c) / 3.0
+    p2 = (a - q) ** 2 + (b - q) ** 2 + (c - q) ** 2 + 2.0 * off
+    p = math.sqrt(p2 / 6.0)
+    if p == 0.0:
+        return (q, q, q)
+    # B = (A - q I) / p; r = det(B) / 2, clamped to [-1, 1] against rounding
+    ba, bb, bc, bd, be, bf = (a - q) / p, (b - q) / p, (c - q) / p, d / p, e / p, f / p
+    det = (ba * (bb * bc - bf * bf) - bd * (bd * bc - bf * be) + be * (bd * bf - bb * be))
+    r = max(-1.0, min(1.0, det / 2.0))
+    phi = math.acos(r) / 3.0
+    largest = q + 2.0 * p * math.cos(phi)
+    smallest = q + 2.0 * p * math.cos(phi + 2.0 * math.pi / 3.0)
+    middle = 3.0 * q - largest - smallest
+    x, y, z = sorted((smallest, middle, largest))
+    return (x, y, z)
+
+
+def triangle_violation(moments: Sequence[float]) -> float:
+    """How much the largest principal moment exceeds the sum of the other two (kg*m^2);
+    zero or negative when the triangle inequality holds."""
+    small, middle, large = sorted(moments)
+    return large - (small + middle)
+
+
+def minimum_trace(mass: float, max_density: float = MAX_MATERIAL_DENSITY) -> float:
+    """The smallest trace (Ixx + Iyy + Izz, kg*m^2) any solid of `mass` (kg) can have when no
+    part of it is denser than `max_density` (kg/m^3).
+
+    The trace is 2 * integral(r^2 dm) about the centre of mass; at a bounded density it is
+    smallest for a ball of uniform maximal density: 6/5 * m * R^2, R = (3m / (4 pi rho))^(1/3).
+    """
+    if mass <= 0 or max_density <= 0:
+        return 0.0
+    radius = (3.0 * mass / (4.0 * math.pi * max_density)) ** (1.0 / 3.0)
+    return 1.2 * mass * radius * radius
+
+
+def rotated(matrix: Sequence[Sequence[float]], rpy: Sequence[float]) -> Mat3:
+    """R M R^T with R from URDF roll-pitch-yaw (rad): R = Rz(yaw) Ry(pitch) Rx(roll)."""
+    r = rpy_rotation(rpy)
+    rm = [[sum(r[i][k] * matrix[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+    out = [[sum(rm[i][k] * r[j][k] for k in range(3)) for j in range(3)] for i in range(3)]
+    return _mat3(out)
+
+
+def rpy_rotation(rpy: Sequence[float]) -> Mat3:
+    """URDF's rotation matrix from roll, pitch, yaw (rad)."""
+    roll, pitch, yaw = (float(v) for v in rpy)
+    cr, sr = math.cos(roll), math.sin(roll)
+    cp, sp = math.cos(pitch), math.sin(pitch)
+    cy, sy = math.cos(yaw), math.sin(yaw)
+    return _mat3([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+                  [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+                  [-sp, cp * sr, cp * cr]])
+
+
+def _mat3(rows: Sequence[Sequence[float]]) -> Mat3:
+    return tuple((float(r[0]), float(r[1]), float(r[2])) for r in rows)  # type: ignore[return-value]

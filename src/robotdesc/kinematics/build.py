@@ -1,0 +1,177 @@
+"""Build the Pinocchio model of a robot, or say why Pinocchio refuses it.
+
+Pinocchio's URDF reader (urdfdom) prints its reason to the C stderr stream and raises a
+generic error; the reason is captured and mapped to the element it names (joint or link
+in brackets), so a refused model becomes a finding at that element's source line.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import tempfile
+import threading
+from dataclasses import dataclass
+from typing import Any
+
+from robotdesc.errors import InputError
+from robotdesc.kinematics.optional import import_pinocchio
+from robotdesc.kinematics.tree import tree_problem
+from robotdesc.kinematics.urdf_text import MeshPath, pinocchio_urdf
+from robotdesc.model.elements import Robot
+from robotdesc.source import Provenance
+
+_NAMES = re.compile(r"\[([^\]]*)\]")
+_CAPTURE_LOCK = threading.Lock()
+
+
+@dataclass(frozen=True)
+class BuildProblem:
+    """Why Pinocchio could not build a model.
+
+    Attributes:
+        reason: Pinocchio's (urdfdom's) own words, its source locations removed.
+        element: the element the reason names ("joint:j", "link:l"), "" when none.
+        where: that element's provenance, when known.
+        from_pinocchio: False when robotdesc refused the model before calling Pinocchio
+            (links that do not form one tree, which crash urdfdom on some inputs).
+    """
+
+    reason: str
+    element: str = ""
+    where: Provenance | None = None
+    from_pinocchio: bool = True
+
+
+class KinematicBuildError(InputError):
+    """Pinocchio refused the robot; `problem` says why and where."""
+
+    def __init__(self, problem: BuildProblem) -> None:
+        prefix = "Pinocchio cannot build the model" if problem.from_pinocchio else \
+            "the model cannot be given to Pinocchio"
+        super().__init__(f"{prefix}: {problem.reason}",
+                         problem.where.span if problem.where else None)
+        self.problem = problem
+
+
+@dataclass(frozen=True, eq=False)
+class KinematicModel:
+    """A robot as Pinocchio sees it.
+
+    Attributes:
+        robot: the parsed robot.
+        model: the `pinocchio.Model` (fixed base; mimic joints kept as ordinary joints, driven
+            by robotdesc).
+        urdf: the URDF text given to Pinocchio.
+    """
+
+    robot: Robot
+    model: Any
+    urdf: str
+
+    def configuration(self, positions: dict[str, float]) -> Any:
+        """Pinocchio's q vector for joint positions by name (rad or m); others neutral.
+
+        A continuous joint (two entries, cos and sin) gets its angle converted.
+        """
+        import numpy as np
+
+        pin = import_pinocchio()
+        q = np.array(pin.neutral(self.model), dtype=float)
+        for index in range(1, self.model.njoints):
+            name = self.model.names[index]
+            if name not in positions:
+                continue
+            start, size = self.model.idx_qs[index], self.model.nqs[index]
+            value = float(positions[name])
+            if size == 1:
+                q[start] = value
+            elif size == 2:
+                q[start:start + 2] = (np.cos(value), np.sin(value))
+        return q
+
+
+    def configurations(self, names: list[str], positions: Any) -> Any:
+        """Pinocchio q vectors, one row per row of `positions` ((n, len(names)), rad or m)."""
+        import numpy as np
+
+        pin = import_pinocchio()
+        rows = np.asarray(positions, dtype=float).reshape(-1, len(names))
+        q = np.tile(np.asarray(pin.neutral(self.model), dtype=float), (len(rows), 1))
+        for column, name in enumerate(names):
+            if not self.model.existJointName(name):
+                continue
+            index = self.model.getJointId(name)
+            start, size = self.model.idx_qs[index], self.model.nqs[index]
+            if size == 1:
+                q[:, start] = rows[:, column]
+            elif size == 2:
+                q[:, start] = np.cos(rows[:, column])
+                q[:, start + 1] = np.sin(rows[:, column])
+        return q
+
+
+def build_model(robot: Robot, mesh_path: MeshPath = lambda mesh: None) -> KinematicModel:
+    """Build the Pinocchio model of `robot`.
+
+    Args:
+        robot: the parsed robot.
+        mesh_path: resolves `<mesh>` references for the URDF text (see `resolve.mesh_resolver`).
+
+    Raises:
+        KinematicsUnavailable: Pinocchio is not installed.
+        KinematicBuildError: Pinocchio refused the model.
+    """
+    pin = import_pinocchio("building the kinematic model")
+    broken = tree_problem(robot)
+    if broken is not None:  # refused here: urdfdom crashes on some of these
+        raise KinematicBuildError(BuildProblem(broken[0], broken[1], broken[2],
+                                               from_pinocchio=False))
+    urdf = pinocchio_urdf(robot, mesh_path)
+    error, captured, model = None, "", None
+    with _CAPTURE_LOCK:
+        with _StderrCapture() as capture:
+            try:
+                model = pin.buildModelFromXML(urdf, False)
+            except (ValueError, RuntimeError) as exc:
+                error = exc
+        captured = capture.text
+    if error is not None:
+        raise KinematicBuildError(explain(robot, captured, str(error)))
+    return KinematicModel(robot, model, urdf)
+
+
+def explain(robot: Robot, captured: str, fallback: str) -> BuildProblem:
+    """The first reason urdfdom printed, mapped to the joint or link it names."""
+    reasons = [line.split(":", 1)[1].strip() for line in captured.splitlines()
+               if line.strip().startswith("Error:")]
+    reason = reasons[0] if reasons else fallback
+    for name in _NAMES.findall(reason):
+        joint = robot.joint(name)
+        if joint is not None:
+            return BuildProblem(reason, f"joint:{name}", joint.where)
+        link = robot.link(name)
+        if link is not None:
+            return BuildProblem(reason, f"link:{name}", link.where)
+    return BuildProblem(reason)
+
+
+class _StderrCapture:
+    """Redirect the process's file descriptor 2 to a temporary file (C libraries write there)."""
+
+    def __enter__(self) -> "_StderrCapture":
+        import sys
+
+        sys.stderr.flush()
+        self.text = ""
+        self._file = tempfile.TemporaryFile()
+        self._saved = os.dup(2)
+        os.dup2(self._file.fileno(), 2)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        os.dup2(self._saved, 2)
+        os.close(self._saved)
+        self._file.seek(0)
+        self.text = self._file.read().decode("utf-8", errors="replace")
+        self._file.close()

@@ -1,0 +1,111 @@
+"""Lint many targets, in this process or across worker processes (`lint --jobs N`).
+
+Workers share robotdesc's on-disk caches (expansions and mesh summaries, both keyed by
+content and written atomically), so a mesh used by several targets is summarized once per
+cache, not once per worker. Results come back in the order of the targets, whatever the
+number of jobs, so reports do not depend on scheduling.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import logging
+import os
+import threading
+import traceback
+from dataclasses import dataclass
+from typing import Any, Mapping, Sequence
+
+from robotdesc.errors import InputError, RobotdescError
+from robotdesc.linting.result import LintFailure, LintResult
+from robotdesc.linting.targets import LintTarget
+
+log = logging.getLogger(__name__)
+
+Outcome = LintResult | LintFailure
+
+
+class WorkerCrashed(RobotdescError):
+    """Linting a target raised something that is not an input error (a bug, exit code 3)."""
+
+
+@dataclass(frozen=True)
+class _Crash:
+    """A bug in a worker, carried back as text (exceptions do not always pickle)."""
+
+    target: str
+    summary: str
+    trace: str
+
+
+def effective_jobs(jobs: int) -> int:
+    """`jobs`, where 0 means one per CPU."""
+    if jobs < 0:
+        raise ValueError(f"jobs must be 0 (one per CPU) or positive, got {jobs}")
+    return jobs or os.cpu_count() or 1
+
+
+def lint_targets(targets: Sequence[LintTarget], *, args: Mapping[str, str] | None = None,
+                 expand_options: Any = None, select: Sequence[str] | None = None,
+                 ignore: Sequence[str] = (), jobs: int = 1) -> list[Outcome]:
+    """Lint every target; one `LintResult` or `LintFailure` per target, in target order.
+
+    The results carry diagnostics only (`expanded` and `robot` are dropped so that they
+    travel cheaply between processes); use `lint_file` for the model.
+
+    Args:
+        targets: what to lint (see `discover_targets`).
+        args: command-line xacro arguments; they override the targets' own.
+        expand_options: `robotdesc.expansion.ExpandOptions` for every target.
+        select: rule selectors that replace each config's `select`.
+        ignore: rule selectors added to each config's `ignore`.
+        jobs: worker processes (1: lint in this process; 0: one per CPU).
+
+    Raises:
+        WorkerCrashed / RuleCrashed: a bug while linting a target (exit code 3).
+    """
+    jobs = min(effective_jobs(jobs), max(1, len(targets)))
+    work = [(target, dict(args or {}), expand_options, select, tuple(ignore))
+            for target in targets]
+    if jobs == 1:
+        outcomes = [_lint_one(*item, keep_exceptions=True) for item in work]
+    else:
+        from concurrent.futures import ProcessPoolExecutor
+
+        log.info("linting %d targets in %d worker processes", len(targets), jobs)
+        with ProcessPoolExecutor(max_workers=jobs, mp_context=_context()) as pool:
+            outcomes = list(pool.map(_lint_one, *zip(*work)))
+    for outcome in outcomes:
+        if isinstance(outcome, _Crash):
+            raise WorkerCrashed(f"{outcome.summary} (while linting {outcome.target})\n"
+                                f"{outcome.trace}")
+    return outcomes
+
+
+def _lint_one(target: LintTarget, args: dict, expand_options: Any, select: Any,
+              ignore: tuple, keep_exceptions: bool = False) -> Outcome | _Crash:
+    """Lint one target; input errors become failures, bugs become `_Crash` in a worker."""
+    from robotdesc.linting.driver import lint_file
+
+    log.info("linting %s", target.name())
+    try:
+        result = lint_file(target.path, target.config, args={**dict(target.args), **args},
+                           expand_options=expand_options, select=select, ignore=ignore)
+    except InputError as exc:
+        return LintFailure(target.path, exc, target.variant)
+    except Exception as exc:  # a bug: let it through here, carry it as text from a worker
+        if keep_exceptions:
+            raise
+        return _Crash(target.name(), f"{type(exc).__name__}: {exc}", traceback.format_exc())
+    return dataclasses.replace(result, expanded=None, robot=None, variant=target.variant)
+
+
+def _context() -> Any:
+    """Fork when that is safe (no other thread runs: workers start without re-importing),
+    else spawn."""
+    import multiprocessing
+
+    methods = multiprocessing.get_all_start_methods()
+    if "fork" in methods and threading.active_count() == 1:
+        return multiprocessing.get_context("fork")
+    return multiprocessing.get_context("spawn")

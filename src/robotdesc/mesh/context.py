@@ -1,0 +1,272 @@
+"""Mesh access for the rules: resolve `<mesh>` references, load and summarize them through
+the mesh cache, and measure each link's geometry in the link frame.
+
+The lint driver builds one `MeshContext` per linted file, only when a selected rule needs
+meshes. Nothing is read until a rule asks; every answer is remembered for the other rules.
+Package names go through the same resolver chain as the xacro expansion, and an unknown
+package is reported, never looked up elsewhere.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+from dataclasses import dataclass
+from typing import Callable, Iterator
+
+from robotdesc.config import MeshSettings
+from robotdesc.mesh.cache import MeshCache, default_cache_dir
+from robotdesc.mesh.mass import MassProperties, Vec3, combine, rpy_matrix
+from robotdesc.mesh.primitives import primitive_properties
+from robotdesc.mesh.resolve import MeshResolution, resolve_mesh
+from robotdesc.mesh.summary import MassMethod, MeshSummary, analyze_mesh_file
+from robotdesc.mesh.validate import DEFAULT_LIMITS, MeshError, MeshLimits
+from robotdesc.model.elements import Collision, Link, MeshRef, Robot, Visual
+
+log = logging.getLogger(__name__)
+
+PackageLookup = Callable[[str], "str | None"]
+
+#: Methods whose mass properties are those of the surface itself (not a hull estimate).
+TRUSTED_METHODS = frozenset({MassMethod.EXACT, MassMethod.FLIPPED, MassMethod.HOLES_CAPPED})
+
+
+@dataclass(frozen=True)
+class MeshLookup:
+    """One `<mesh>` reference, resolved and (when it resolved) summarized.
+
+    Attributes:
+        ref: the reference as written.
+        resolution: where it leads, or why it does not.
+        summary: mass properties at density 1, bounds and health; None when not available.
+        error: why the file could not be read as a mesh, if it could not.
+    """
+
+    ref: MeshRef
+    resolution: MeshResolution
+    summary: MeshSummary | None = None
+    error: MeshError | None = None
+
+
+@dataclass(frozen=True)
+class LinkGeometry:
+    """The measured geometry of one link, in the link frame.
+
+    Attributes:
+        link: the link's name.
+        source: "collision" or "visual": which geometry was measured; "" when none.
+        properties: combined mass properties at density 1 kg/m^3 (mass = volume, m^3), or
+            None when nothing could be measured.
+        bounds: axis-aligned bounds (lower, upper corner, m) of the measured geometry.
+        unmeasured: why a geometry of the source could not be measured, one entry each.
+        estimated: a part's properties are a convex-hull estimate, not the surface's own.
+        notes: how the source was chosen, and the fallbacks taken.
+    """
+
+    link: str
+    source: str
+    properties: MassProperties | None
+    bounds: tuple[Vec3, Vec3] | None
+    unmeasured: tuple[str, ...] = ()
+    estimated: bool = False
+    notes: tuple[str, ...] = ()
+
+    @property
+    def complete(self) -> bool:
+        """Every geometry of the source was measured."""
+        return self.properties is not None and not self.unmeasured
+
+    @property
+    def trusted(self) -> bool:
+        """Complete and exact enough to judge a declared inertia against."""
+        return self.complete and not self.estimated and self.properties.volume > 0
+
+
+class MeshContext:
+    """Mesh access for one robot.
+
+    Args:
+        robot: the parsed description.
+        settings: the config's mesh settings.
+        find_package: package name -> root directory (None when unknown).
+        cache: the mesh cache, or None to recompute every summary.
+        limits: size limits for mesh files.
+    """
+
+    def __init__(self, robot: Robot, settings: MeshSettings, find_package: PackageLookup,
+                 cache: MeshCache | None = None, limits: MeshLimits = DEFAULT_LIMITS) -> None:
+        self.robot = robot
+        self.settings = settings
+        self._find_package = find_package
+        self._cache = cache
+        self._limits = limits
+        self._lookups: dict[tuple, MeshLookup] = {}
+        self._links: dict[tuple[str, str | None], LinkGeometry] = {}
+        self._roots: dict[str, str | None] = {}
+
+    @classmethod
+    def for_file(cls, robot: Robot, target: str, settings: MeshSettings,
+                 package_paths: tuple[str, ...] = (),
+                 package_map: tuple[tuple[str, str], ...] = ()) -> MeshContext:
+        """The context for a linted file: the expansion's package chain and the mesh cache."""
+        from robotdesc.expansion.packages import PackageResolver, PackageResolverConfig
+
+        resolver = PackageResolver(PackageResolverConfig.from_environment(
+            target, package_paths, package_map))
+
+        def find_package(name: str) -> str | None:
+            hit = resolver.find(name)
+            return hit.path if hit is not None else None
+
+        directory = default_cache_dir() if settings.cache else None
+        return cls(robot, settings, find_package, MeshCache(directory) if directory else None)
+
+    # --- one mesh -----------------------------------------------------------------------
+
+    def lookup(self, ref: MeshRef) -> MeshLookup:
+        """Resolve and summarize one `<mesh>` (remembered per file, base and scale)."""
+        base_dir = self._base_dir(ref)
+        key = (ref.filename, base_dir, tuple(ref.scale))
+        found = self._lookups.get(key)
+        if found is None:
+            found = self._lookup(ref, base_dir)
+            self._lookups[key] = found
+        return found
+
+    def _lookup(self, ref: MeshRef, base_dir: str) -> MeshLookup:
+        resolution = resolve_mesh(ref.filename, base_dir=base_dir,
+                                  find_package=self._find_package,
+                                  allow_absolute=self.settings.allow_absolute_paths,
+                                  relative_root=self._package_root(base_dir))
+        if not resolution.ok:
+            return MeshLookup(ref, resolution)
+        try:
+            summary = analyze_mesh_file(resolution.path, ref.scale, self._limits, self._cache)
+        except MeshError as error:
+            return MeshLookup(ref, resolution, error=error)
+        return MeshLookup(ref, resolution, summary)
+
+    def _base_dir(self, ref: MeshRef) -> str:
+        """The folder a relative filename is taken from: that of the file holding the
+        `<mesh>` element (a xacro file for expanded input), else the robot's source."""
+        written_in = ref.where.span.path if ref.where else ""
+        if written_in and os.path.isfile(written_in):
+            return os.path.dirname(os.path.abspath(written_in))
+        return os.path.dirname(os.path.abspath(self.robot.source or "."))
+
+    def _package_root(self, directory: str) -> str | None:
+        if directory not in self._roots:
+            from robotdesc.expansion.packages import enclosing_package
+
+            found = enclosing_package(directory)
+            self._roots[directory] = str(found[1]) if found else None
+        return self._roots[directory]
+
+    # --- all meshes ---------------------------------------------------------------------
+
+    def meshes(self) -> Iterator[tuple[Link, str, int, Visual | Collision, MeshRef]]:
+        """Every `<mesh>`: (link, "visual" | "collision", index, element, reference)."""
+        for link in self.robot.links:
+            for kind, shapes in (("visual", link.visuals), ("collision", link.collisions)):
+                for index, shape in enumerate(shapes):
+                    if isinstance(shape.geometry, MeshRef):
+                        yield link, kind, index, shape, shape.geometry
+
+    # --- one link -----------------------------------------------------------------------
+
+    def link_geometry(self, link: Link, source: str | None = None) -> LinkGeometry:
+        """The link's geometry measured at density 1, in the link frame.
+
+        Args:
+            link: the link.
+            source: "collision" or "visual"; default: the configured `inertia_source`.
+                When the link has no geometry of that kind the other kind is used (and a
+                note says so).
+        """
+        key = (link.name, source)
+        if key not in self._links:
+            self._links[key] = self._measure(link, source or self.settings.inertia_source)
+        return self._links[key]
+
+    def _measure(self, link: Link, wanted: str) -> LinkGeometry:
+        other = "visual" if wanted == "collision" else "collision"
+        shapes = _shapes(link, wanted)
+        notes: list[str] = []
+        source = wanted
+        if not shapes and _shapes(link, other):
+            shapes, source = _shapes(link, other), other
+            notes.append(f"no {wanted} geometry: measured the {other} geometry")
+        if not shapes:
+            return LinkGeometry(link.name, "", None, None, notes=("no geometry",))
+        parts, corners, unmeasured, estimated = [], [], [], False
+        for shape in shapes:
+            measured = self._shape_properties(shape)
+            if isinstance(measured, str):
+                unmeasured.append(measured)
+                continue
+            props, box, hull = measured
+            estimated = estimated or hull
+            rotation = rpy_matrix(shape.origin.rpy)
+            parts.append(props.transformed(shape.origin.xyz, shape.origin.rpy))
+            corners.extend(_box_corners(box, rotation, shape.origin.xyz))
+        if not parts:
+            return LinkGeometry(link.name, source, None, None, tuple(unmeasured), notes=tuple(notes))
+        low = tuple(min(c[i] for c in corners) for i in range(3))
+        high = tuple(max(c[i] for c in corners) for i in range(3))
+        if estimated:
+            notes.append("part of it is a convex-hull estimate (a mesh is not a closed surface)")
+        return LinkGeometry(link.name, source, combine(parts), (low, high),  # type: ignore[arg-type]
+                            tuple(unmeasured), estimated, tuple(notes))
+
+    def _shape_properties(self, shape: Visual | Collision
+                          ) -> tuple[MassProperties, tuple[Vec3, Vec3], bool] | str:
+        """(properties at density 1, local bounds, is a hull estimate), or why not."""
+        geometry = shape.geometry
+        if geometry is None:
+            return "a geometry element is missing or unreadable"
+        if isinstance(geometry, MeshRef):
+            found = self.lookup(geometry)
+            if found.summary is None:
+                reason = (found.error.detail if found.error is not None
+                          else found.resolution.problem.message if found.resolution.problem
+                          else "not available")
+                return f"{geometry.filename}: {reason}"
+            summary = found.summary
+            if summary.properties is None:
+                return f"{geometry.filename}: encloses no volume"
+            return summary.properties, summary.bounds, summary.method not in TRUSTED_METHODS
+        try:
+            props = primitive_properties(geometry)
+        except ValueError as error:
+            return str(error)
+        half = _primitive_half_extent(geometry)
+        return props, ((-half[0], -half[1], -half[2]), half), False
+
+
+def _shapes(link: Link, kind: str) -> tuple[Visual | Collision, ...]:
+    shapes = link.collisions if kind == "collision" else link.visuals
+    return tuple(s for s in shapes if s.geometry is not None or s.where is not None)
+
+
+def _primitive_half_extent(geometry) -> Vec3:
+    from robotdesc.model.elements import Box, Sphere
+
+    if isinstance(geometry, Box):
+        x, y, z = geometry.size
+        return (x / 2, y / 2, z / 2)
+    if isinstance(geometry, Sphere):
+        return (geometry.radius,) * 3  # type: ignore[return-value]
+    r = geometry.radius
+    half_length = geometry.length / 2 + (r if type(geometry).__name__ == "Capsule" else 0.0)
+    return (r, r, half_length)
+
+
+def _box_corners(box: tuple[Vec3, Vec3], rotation, xyz) -> list[Vec3]:
+    """The eight corners of a local box, in the parent frame."""
+    import numpy as np
+
+    low, high = box
+    points = np.array([[x, y, z] for x in (low[0], high[0]) for y in (low[1], high[1])
+                       for z in (low[2], high[2])])
+    moved = points @ np.asarray(rotation).T + np.asarray(xyz, dtype=float)
+    return [tuple(float(v) for v in row) for row in moved]  # type: ignore[misc]

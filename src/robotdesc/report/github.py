@@ -1,0 +1,93 @@
+"""GitHub Actions workflow commands: one annotation per finding, shown on the pull request.
+
+    ::error file=urdf/arm.xacro,line=3,col=2,title=J101 revolute-without-limit::revolute ...
+
+Severities map to `error`, `warning` and `notice`. Data is escaped as GitHub's toolkit does
+(`%`, CR and LF); property values also escape `:` and `,`. The macro call chain follows the
+message on extra lines (escaped LF), and a plain summary line ends the output.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any, Sequence
+
+from robotdesc.diagnostics import Diagnostic, Severity
+from robotdesc.source import Span
+
+_COMMAND = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "notice"}
+
+
+def escape_data(text: str) -> str:
+    """Escape a command's message."""
+    return text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+
+
+def escape_property(text: str) -> str:
+    """Escape a command property's value."""
+    return escape_data(text).replace(":", "%3A").replace(",", "%2C")
+
+
+def workflow_command(command: str, message: str, **properties: Any) -> str:
+    """`::command key=value,...::message` with escaping; properties that are None or 0 are
+    left out."""
+    props = ",".join(f"{key}={escape_property(str(value))}"
+                     for key, value in properties.items() if value not in (None, 0, ""))
+    return f"::{command}{' ' + props if props else ''}::{escape_data(message)}"
+
+
+def render_github(results: Sequence[Any], failures: Sequence[Any] = (), *,
+                  cwd: str | None = None) -> str:
+    """Annotations for every finding and every file that could not be checked, then a
+    summary line (text ending with a newline)."""
+    from robotdesc.report.text import summary_line
+
+    root = os.path.abspath(cwd or os.getcwd())
+    lines = [_annotation(d, r, root) for r in results for d in r.diagnostics]
+    lines += [_failure(f, root) for f in failures]
+    summary = "".join(text for text, _ in summary_line(results, failures))
+    if summary:
+        lines.append(summary)
+    return "".join(line + "\n" for line in lines)
+
+
+def _annotation(diagnostic: Diagnostic, result: Any, root: str) -> str:
+    from robotdesc.linting.matrix import variant_label
+
+    span = diagnostic.where.span if diagnostic.where else None
+    stack = diagnostic.where.macro_stack if diagnostic.where else ()
+    message = diagnostic.message
+    label = variant_label(getattr(result, "variant", ()))
+    if label:
+        message += f" (variant {label})"
+    message += "".join(f"\nin macro called from {_location(site, root)}" for site in stack)
+    return workflow_command(
+        _COMMAND[diagnostic.severity], message,
+        file=_path(span.path if span else diagnostic.target or result.target, root),
+        line=span.line if span else None, col=span.col if span else None,
+        title=f"{diagnostic.code} {diagnostic.name}")
+
+
+def _failure(failure: Any, root: str) -> str:
+    from robotdesc.linting.targets import target_name
+
+    error = failure.error
+    span = getattr(error, "span", None)
+    message = getattr(error, "message", str(error))
+    message += "".join(f"\nin macro called from {_location(site, root)}"
+                       for site in getattr(error, "call_stack", ()))
+    name = target_name(failure.target, getattr(failure, "variant", ()), root)
+    return workflow_command("error", message,
+                            file=_path(span.path if span else failure.target, root),
+                            line=span.line if span else None, col=span.col if span else None,
+                            title=f"robotdesc: {name} could not be checked")
+
+
+def _path(path: str, root: str) -> str:
+    from robotdesc.linting.targets import target_name
+
+    return target_name(path, (), root)
+
+
+def _location(span: Span, root: str) -> str:
+    return str(Span(_path(span.path, root), span.line, span.col))

@@ -1,0 +1,94 @@
+"""Gather what the HTML report shows: the lint result, the display scene, the inertia table
+and (on request) a collision generation run. The I/O edge of the report; rendering is in
+html.py."""
+
+from __future__ import annotations
+
+import logging
+import time
+from dataclasses import dataclass
+from typing import Any, Mapping, Sequence
+
+from robotdesc.view.scene import Scene
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True, eq=False)
+class ReportData:
+    """Everything one report page is made of.
+
+    Attributes:
+        result: the `LintResult` (its `robot` and `diagnostics`).
+        scene: the display scene (None: no 3D view).
+        inertia_rows: the inertia table (`robotdesc.inertia.table.InertiaRow`s); None when
+            it was not computed.
+        collision: a `CollisionResult` from `generate_collision`, when one was run.
+        notes: what could not be included, and why.
+        seconds: time spent gathering (s).
+    """
+
+    result: Any
+    scene: Scene | None
+    inertia_rows: tuple[Any, ...] | None = None
+    collision: Any = None
+    notes: tuple[str, ...] = ()
+    seconds: float = 0.0
+
+
+def collect_report(result: Any, *, package_paths: Sequence[str] = (),
+                   package_map: Sequence[tuple[str, str]] = (),
+                   joint_values: Mapping[str, float] | None = None,
+                   max_faces: int | None = None, mesh_settings: Any = None,
+                   collision_method: str | None = None, collision_options: Any = None,
+                   jobs: int | None = None, view: bool = True) -> ReportData:
+    """Build the scene and the inertia table of a linted robot, and optionally generate
+    collision geometry to compare with.
+
+    Args:
+        result: a `LintResult` with a parsed `robot`.
+        package_paths, package_map: where `package://` meshes are looked up first.
+        joint_values: the configuration of the 3D view (rad or m).
+        max_faces: display budget per mesh file.
+        mesh_settings: `robotdesc.config.MeshSettings` (default: the defaults).
+        collision_method: run `generate_collision` with this method ("decimate", "hull",
+            "coacd", "primitive", "auto"); None: do not.
+        collision_options: a `robotdesc.collision.CollisionOptions`, if any.
+        jobs: worker processes for collision generation.
+        view: build the 3D scene.
+
+    Raises:
+        InputError: `joint_values` names an unknown, fixed or mimic joint.
+    """
+    from robotdesc.config import MeshSettings
+    from robotdesc.view.scene import DEFAULT_MAX_FACES, build_scene
+
+    started = time.perf_counter()
+    robot = result.robot
+    notes: list[str] = []
+    scene = build_scene(robot, joint_values, package_paths=tuple(package_paths),
+                        package_map=tuple(package_map),
+                        max_faces=max_faces or DEFAULT_MAX_FACES) if view else None
+    settings = mesh_settings or MeshSettings()
+    rows = _inertia_rows(robot, result.target, settings, package_paths, package_map)
+    if scene is not None and scene.problems:
+        notes.append(f"{len(scene.problems)} geometries could not be shown in the 3D view")
+    collision = None
+    if collision_method:
+        from robotdesc.collision import generate_collision
+
+        collision = generate_collision(robot, collision_method, options=collision_options,
+                                       package_paths=tuple(package_paths),
+                                       package_map=tuple(package_map), jobs=jobs)
+    return ReportData(result, scene, rows, collision, tuple(notes),
+                      time.perf_counter() - started)
+
+
+def _inertia_rows(robot: Any, target: str, settings: Any, package_paths: Sequence[str],
+                  package_map: Sequence[tuple[str, str]]) -> tuple[Any, ...]:
+    from robotdesc.inertia.table import inertia_table
+    from robotdesc.mesh.context import MeshContext
+
+    meshes = MeshContext.for_file(robot, target, settings, tuple(package_paths),
+                                  tuple(package_map))
+    return tuple(inertia_table(robot, meshes))

@@ -1,0 +1,108 @@
+"""The plots of the HTML report, as inline SVG drawn with matplotlib (the `report` extra).
+
+Pure functions of plain data: each returns an `<svg>` string, or None when there is nothing
+to plot. Text stays text in the SVG (searchable, and smaller). matplotlib is imported inside
+the functions; `plots_available()` tells whether it is installed.
+"""
+
+from __future__ import annotations
+
+import io
+import re
+from typing import Sequence
+
+Vec3 = tuple[float, float, float]
+
+#: Most links one plot shows (the rest are summarised in its title).
+MAX_ROWS = 40
+DECLARED_COLOR = "#1f5fa8"
+DERIVED_COLOR = "#d9731a"
+
+
+def plots_available() -> bool:
+    """matplotlib can be imported."""
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def _figure(rows: int):
+    """A Figure without pyplot (no global backend or state is touched)."""
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(8.0, 1.3 + 0.24 * rows))
+    return figure, figure.subplots()
+
+
+def _svg(figure, salt: str) -> str:
+    import matplotlib
+
+    buffer = io.StringIO()
+    with matplotlib.rc_context({"svg.fonttype": "none", "svg.hashsalt": salt}):
+        figure.savefig(buffer, format="svg", bbox_inches="tight", metadata={"Date": None})
+    text = buffer.getvalue()
+    start = text.find("<svg")
+    svg = text[start:] if start >= 0 else text
+    return re.sub(r"<metadata>.*?</metadata>", "", svg, flags=re.S)
+
+
+def moments_plot(rows: Sequence[tuple[str, Vec3, Vec3]], total: int | None = None
+                 ) -> str | None:
+    """Declared against mesh-derived principal moments, one line of the chart per link.
+
+    Args:
+        rows: (link, declared moments, derived moments) ascending, kg*m^2, worst first;
+            at most MAX_ROWS are drawn.
+        total: the number of links compared (for the title; default len(rows)).
+    """
+    shown = [r for r in rows if min(r[1]) > 0 and min(r[2]) > 0][:MAX_ROWS]
+    if not shown:
+        return None
+    figure, axes = _figure(len(shown))
+    for y, (link, declared, derived) in enumerate(shown):
+        for d, g in zip(declared, derived):
+            axes.plot([d, g], [y, y], color="#bbbbbb", linewidth=1, zorder=1)
+        axes.scatter(declared, [y] * 3, color=DECLARED_COLOR, s=18, zorder=2,
+                     label="declared" if y == 0 else None)
+        axes.scatter(derived, [y] * 3, color=DERIVED_COLOR, marker="x", s=22, zorder=3,
+                     label="from geometry, at the declared mass" if y == 0 else None)
+    axes.set_xscale("log")
+    axes.set_yticks(range(len(shown)), [r[0] for r in shown], fontsize=8)
+    axes.invert_yaxis()
+    axes.set_xlabel("principal moment of inertia (kg·m²)")
+    count = total if total is not None else len(rows)
+    axes.set_title(f"Principal moments of {count} links, largest difference first",
+                   fontsize=10)
+    axes.grid(axis="x", which="major", color="#e4e4e4")
+    axes.legend(fontsize=8, loc="lower right")
+    return _svg(figure, "moments")
+
+
+def faces_plot(rows: Sequence[tuple[str, int, int]], total: int | None = None) -> str | None:
+    """Polygon counts per link, visual against collision (log scale).
+
+    Args:
+        rows: (link, visual faces, collision faces), at most MAX_ROWS drawn in this order.
+        total: the number of links with geometry (for the title; default len(rows)).
+    """
+    shown = [r for r in rows if r[1] > 0 or r[2] > 0][:MAX_ROWS]
+    if not shown:
+        return None
+    figure, axes = _figure(len(shown))
+    ys = range(len(shown))
+    axes.barh([y - 0.2 for y in ys], [max(r[1], 0.8) for r in shown], height=0.4,
+              color=DECLARED_COLOR, label="visual")
+    axes.barh([y + 0.2 for y in ys], [max(r[2], 0.8) for r in shown], height=0.4,
+              color=DERIVED_COLOR, label="collision")
+    axes.set_xscale("log")
+    axes.set_yticks(list(ys), [r[0] for r in shown], fontsize=8)
+    axes.invert_yaxis()
+    axes.set_xlabel("triangles")
+    count = total if total is not None else len(rows)
+    axes.set_title(f"Triangles per link ({count} links with geometry), most visual first",
+                   fontsize=10)
+    axes.grid(axis="x", which="major", color="#e4e4e4")
+    axes.legend(fontsize=8, loc="lower right")
+    return _svg(figure, "faces")

@@ -1,0 +1,141 @@
+"""JUnit XML report, as CI systems (GitLab, Jenkins, Azure, CircleCI) render test results.
+
+One `<testsuite>` per target (a matrix variant is its own target) and one `<testcase>` per
+rule that ran on it. A rule with findings at or above `fail_on` fails, its `<failure>`
+carrying every finding (location, message, macro call chain); findings below `fail_on` are
+listed in the test case's `<system-out>`. A target that could not be checked is a suite with
+one errored test case.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any, Sequence
+
+from lxml import etree
+
+from robotdesc.diagnostics import Diagnostic, Severity
+from robotdesc.source import Span
+
+#: The name of the test case of a target that could not be checked.
+CHECK_CASE = "expand and parse"
+
+
+def render_junit(results: Sequence[Any], failures: Sequence[Any] = (), *,
+                 fail_on: Severity = Severity.INFO, cwd: str | None = None) -> str:
+    """The JUnit XML document (UTF-8 text with an XML declaration, ending with a newline).
+
+    Args:
+        results: `LintResult`s.
+        failures: `LintFailure`s.
+        fail_on: the lowest severity that fails a test case.
+        cwd: the directory paths are shown relative to (default: the working directory).
+    """
+    root_dir = os.path.abspath(cwd or os.getcwd())
+    suites = etree.Element("testsuites", name="robotdesc")
+    for result in results:
+        suites.append(_result_suite(result, fail_on, root_dir))
+    for failure in failures:
+        suites.append(_failure_suite(failure, root_dir))
+    for key in ("tests", "failures", "errors", "skipped"):
+        suites.set(key, str(sum(int(s.get(key)) for s in suites)))
+    suites.set("time", "0")
+    text = etree.tostring(suites, pretty_print=True, encoding="unicode")
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + text
+
+
+def _result_suite(result: Any, fail_on: Severity, root: str) -> etree._Element:
+    from robotdesc.linting.targets import target_name
+
+    name = target_name(result.target, getattr(result, "variant", ()), root)
+    by_code: dict[str, list[Diagnostic]] = {}
+    for diagnostic in result.diagnostics:
+        by_code.setdefault(diagnostic.code, []).append(diagnostic)
+    codes = list(dict.fromkeys([*result.rules_run, *by_code]))
+    suite = _suite(name, result.target, root)
+    failed = 0
+    names = {d.code: d.name for d in result.diagnostics}
+    for code in codes:
+        found = by_code.get(code, [])
+        case = etree.SubElement(suite, "testcase", name=_case_name(code, names),
+                                classname=name, file=_shown(result.target, root), time="0")
+        failing = [d for d in found if d.severity >= fail_on]
+        passing = [d for d in found if d.severity < fail_on]
+        if failing:
+            failed += 1
+            first = failing[0]
+            more = f" (and {len(failing) - 1} more)" if len(failing) > 1 else ""
+            span = first.where.span if first.where else None
+            if span and span.line:  # where the first failing finding is written
+                case.set("file", _shown(span.path, root))
+                case.set("line", str(span.line))
+            failure = etree.SubElement(case, "failure", message=first.message + more,
+                                       type=str(max(d.severity for d in failing)))
+            failure.text = "\n".join(_finding_text(d, root) for d in failing)
+        if passing:
+            out = etree.SubElement(case, "system-out")
+            out.text = "\n".join(_finding_text(d, root) for d in passing)
+    _count(suite, tests=len(codes), failures=failed, errors=0)
+    return suite
+
+
+def _failure_suite(failure: Any, root: str) -> etree._Element:
+    from robotdesc.linting.targets import target_name
+
+    name = target_name(failure.target, getattr(failure, "variant", ()), root)
+    error = failure.error
+    message = getattr(error, "message", str(error))
+    suite = _suite(name, failure.target, root)
+    case = etree.SubElement(suite, "testcase", name=CHECK_CASE, classname=name,
+                            file=_shown(failure.target, root), time="0")
+    element = etree.SubElement(case, "error", message=message, type=type(error).__name__)
+    span = getattr(error, "span", None)
+    lines = [f"{_location(span, failure.target, root)}: error: {message}"]
+    lines += [f"  in macro called from {_location(s, s.path, root)}"
+              for s in getattr(error, "call_stack", ())]
+    element.text = "\n".join(lines)
+    _count(suite, tests=1, failures=0, errors=1)
+    return suite
+
+
+def _suite(name: str, target: str, root: str) -> etree._Element:
+    suite = etree.Element("testsuite", name=name, time="0")
+    properties = etree.SubElement(suite, "properties")
+    etree.SubElement(properties, "property", name="file", value=_shown(target, root))
+    return suite
+
+
+def _count(suite: etree._Element, *, tests: int, failures: int, errors: int) -> None:
+    for key, value in (("tests", tests), ("failures", failures), ("errors", errors),
+                       ("skipped", 0)):
+        suite.set(key, str(value))
+
+
+def _case_name(code: str, names: dict[str, str]) -> str:
+    if code in names:
+        return f"{code} {names[code]}"
+    from robotdesc.rules.registry import get_rule
+
+    rule = get_rule(code)
+    return f"{code} {rule.name}" if rule else code
+
+
+def _finding_text(diagnostic: Diagnostic, root: str) -> str:
+    span = diagnostic.where.span if diagnostic.where else None
+    stack = diagnostic.where.macro_stack if diagnostic.where else ()
+    lines = [f"{_location(span, diagnostic.target, root)}: {diagnostic.code} "
+             f"[{diagnostic.severity}] {diagnostic.message}"]
+    lines += [f"  in macro called from {_location(site, site.path, root)}" for site in stack]
+    return "\n".join(lines)
+
+
+def _location(span: Span | None, fallback: str, root: str) -> str:
+    if span is None:
+        return _shown(fallback, root)
+    return str(Span(_shown(span.path, root), span.line, span.col))
+
+
+def _shown(path: str, root: str) -> str:
+    from robotdesc.linting.targets import target_name
+
+    return target_name(path, (), root)

@@ -1,0 +1,65 @@
+"""`lint --statistics`: how many findings each rule made, most first (a first look at a
+legacy package before choosing what to fix, ignore or baseline).
+
+    count  code  name                      severity
+       12  J101  revolute-without-limit    error
+        3  S003  link-name-case-clash      warning
+"""
+
+from __future__ import annotations
+
+import json
+from collections import Counter
+from dataclasses import dataclass
+from typing import Any, Sequence
+
+
+@dataclass(frozen=True)
+class CodeCount:
+    """The findings of one rule.
+
+    Attributes:
+        code: the rule code.
+        name: the rule name.
+        severity: the worst severity among its findings.
+        count: how many findings.
+    """
+
+    code: str
+    name: str
+    severity: str
+    count: int
+
+
+def code_counts(results: Sequence[Any]) -> list[CodeCount]:
+    """Findings counted per rule code, most first, then by code."""
+    counts: Counter = Counter()
+    names, worst = {}, {}
+    for result in results:
+        for d in result.diagnostics:
+            counts[d.code] += 1
+            names[d.code] = d.name
+            worst[d.code] = max(worst.get(d.code, d.severity), d.severity)
+    return [CodeCount(code, names[code], str(worst[code]), n)
+            for code, n in sorted(counts.items(), key=lambda item: (-item[1], item[0]))]
+
+
+def render_statistics_text(results: Sequence[Any]) -> str:
+    """The counts as an aligned table (text ending with a newline)."""
+    rows = [(str(c.count), c.code, c.name, c.severity) for c in code_counts(results)]
+    if not rows:
+        return "No findings.\n"
+    rows.insert(0, ("count", "code", "name", "severity"))
+    widths = [max(len(row[i]) for row in rows) for i in range(3)]
+    lines = [f"{row[0].rjust(widths[0])}  {row[1].ljust(widths[1])}  "
+             f"{row[2].ljust(widths[2])}  {row[3]}" for row in rows]
+    total = sum(int(row[0]) for row in rows[1:])
+    lines.append(f"{str(total).rjust(widths[0])}  total")
+    return "\n".join(lines) + "\n"
+
+
+def render_statistics_json(results: Sequence[Any]) -> str:
+    """The counts as a JSON array of {code, name, severity, count}."""
+    document = [{"code": c.code, "name": c.name, "severity": c.severity, "count": c.count}
+                for c in code_counts(results)]
+    return json.dumps(document, indent=2) + "\n"

@@ -1,0 +1,575 @@
+"""Mesh rules (M1xx): every `<mesh>` must lead to a readable, sound mesh file of the right
+size, and collision geometry must be fit for a physics engine.
+
+All but M115 need meshes (`ctx.meshes`, a `robotdesc.mesh.context.MeshContext`); each
+finding sits at the `<mesh>` element's line. References that are absolute, `file://` or of
+another scheme are reported by the path rules (P1xx) and not read here unless the config
+allows absolute paths.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from robotdesc.diagnostics import Finding, Severity
+from robotdesc.inertia.links import is_dynamics_model
+from robotdesc.model.elements import Robot
+from robotdesc.rules.registry import RuleContext, rule
+
+FAMILY = "meshes"
+NEEDS = ("meshes",)
+#: A link lighter than this (kg) is a placeholder frame, not a body (M115 skips it).
+DUMMY_MASS = 1e-3
+
+
+def _element(link, kind: str, index: int) -> str:
+    return f"link:{link.name}/{kind}[{index}]"
+
+
+def _lookups(ctx: RuleContext, physical_only: bool = False) -> Iterator[tuple]:
+    """(link, kind, index, reference, lookup) per `<mesh>`; `physical_only`: collision
+    meshes, and visual meshes where they are the link's mass source."""
+    if ctx.meshes is None:
+        return
+    source = ctx.meshes.settings.inertia_source
+    for link, kind, index, _shape, ref in ctx.meshes.meshes():
+        if physical_only and kind == "visual" and source != "visual" and link.collisions:
+            continue
+        yield link, kind, index, ref, ctx.meshes.lookup(ref)
+
+
+def _resolve_problems(ctx: RuleContext, kinds: set[str]) -> Iterator[Finding]:
+    for link, kind, index, ref, found in _lookups(ctx):
+        problem = found.resolution.problem
+        if problem is not None and problem.kind.value in kinds:
+            yield Finding(problem.message, ref.where, _element(link, kind, index))
+
+
+def _mesh_errors(ctx: RuleContext, kinds: set[str] | None, exclude: set[str] = frozenset()
+                 ) -> Iterator[Finding]:
+    for link, kind, index, ref, found in _lookups(ctx):
+        error = found.error
+        if error is None or error.kind.value in exclude:
+            continue
+        if kinds is None or error.kind.value in kinds:
+            yield Finding(f"'{ref.filename}' ({error.kind.value}): {error.detail}", ref.where,
+                          _element(link, kind, index))
+
+
+@rule("M101", "mesh-file-missing", family=FAMILY, severity=Severity.ERROR, needs=NEEDS)
+def mesh_file_missing(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a `<mesh>` whose file does not exist (or whose `package://` names no file).
+
+    Why is this bad?
+    Viewers show nothing, simulators refuse the model or drop the collision, and nothing
+    can be computed from the mesh.
+
+    Example
+    ```xml
+    <link name="arm">
+      <visual><geometry><mesh filename="package://arm/meshes/upperarm.stl"/></geometry></visual>
+    </link>
+    ```
+
+    Use instead (the file that exists):
+    ```xml
+    <link name="arm">
+      <visual><geometry><mesh filename="package://arm/meshes/upper_arm.stl"/></geometry></visual>
+    </link>
+    ```
+    """
+    yield from _resolve_problems(ctx, {"missing", "empty"})
+
+
+@rule("M102", "mesh-name-case-mismatch", family=FAMILY, severity=Severity.ERROR, needs=NEEDS)
+def mesh_name_case_mismatch(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a mesh filename that matches an existing file only when case is ignored.
+
+    Why is this bad?
+    It works on Windows and macOS, whose file systems ignore case, and fails on Linux,
+    where ROS runs: `cronstain.dae` is not `Cronstain.dae`.
+
+    Example
+    ```xml
+    <link name="arm">
+      <visual><geometry><mesh filename="package://arm/meshes/cronstain.dae"/></geometry></visual>
+    </link>
+    ```
+
+    Use instead:
+    ```xml
+    <link name="arm">
+      <visual><geometry><mesh filename="package://arm/meshes/Cronstain.dae"/></geometry></visual>
+    </link>
+    ```
+    """
+    yield from _resolve_problems(ctx, {"case-mismatch"})
+
+
+@rule("M103", "unknown-mesh-package", family=FAMILY, severity=Severity.ERROR, needs=NEEDS)
+def unknown_mesh_package(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a `package://NAME/...` mesh whose package no resolver knows.
+
+    robotdesc never falls back to another package that happens to hold the same relative
+    path: that would check a file the robot's users will not get.
+
+    Why is this bad?
+    Every consumer resolves the package by name; a misspelt or undeclared package leaves
+    the mesh missing on every machine but the author's.
+
+    Example
+    ```xml
+    <link name="arm">
+      <visual><geometry><mesh filename="package://arm_descripton/meshes/arm.stl"/></geometry></visual>
+    </link>
+    ```
+
+    Use instead:
+    ```xml
+    <link name="arm">
+      <visual><geometry><mesh filename="package://arm_description/meshes/arm.stl"/></geometry></visual>
+    </link>
+    ```
+    """
+    yield from _resolve_problems(ctx, {"unknown-package"})
+
+
+@rule("M104", "mesh-path-escapes-package", family=FAMILY, severity=Severity.ERROR, needs=NEEDS)
+def mesh_path_escapes_package(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a mesh path that leaves its package root, by `..` or through a symlink.
+
+    Why is this bad?
+    The file is not part of the package: an installed or released package does not carry
+    it, and a description should not read files outside what it ships.
+
+    Example
+    ```xml
+    <link name="arm">
+      <visual><geometry><mesh filename="package://arm/../../secret/arm.stl"/></geometry></visual>
+    </link>
+    ```
+
+    Use instead:
+    ```xml
+    <link name="arm">
+      <visual><geometry><mesh filename="package://arm/meshes/arm.stl"/></geometry></visual>
+    </link>
+    ```
+    """
+    yield from _resolve_problems(ctx, {"escapes-root"})
+
+
+@rule("M105", "mesh-not-a-regular-file", family=FAMILY, severity=Severity.ERROR, needs=NEEDS)
+def mesh_not_a_regular_file(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a mesh path that is a directory, a FIFO, a device or a socket.
+
+    Why is this bad?
+    It is not a mesh; reading a FIFO or a device can block a loader forever.
+
+    Example
+    ```xml
+    <link name="arm">
+      <visual><geometry><mesh filename="package://arm/meshes"/></geometry></visual>
+    </link>
+    ```
+
+    Use instead:
+    ```xml
+    <link name="arm">
+      <visual><geometry><mesh filename="package://arm/meshes/arm.stl"/></geometry></visual>
+    </link>
+    ```
+    """
+    yield from _resolve_problems(ctx, {"not-regular-file"})
+
+
+@rule("M106", "mesh-is-lfs-pointer", family=FAMILY, severity=Severity.ERROR, needs=NEEDS)
+def mesh_is_lfs_pointer(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a mesh file that is a Git LFS pointer, not a mesh.
+
+    Why is this bad?
+    The repository stores its meshes with Git LFS and this checkout never fetched them
+    (`git lfs pull`, or `lfs: true` in CI): every consumer sees a 130-byte text file.
+
+    Example
+    ```xml
+    <link name="arm">
+      <!-- meshes/arm.stl holds "version https://git-lfs.github.com/spec/v1 ..." -->
+      <visual><geometry><mesh filename="package://arm/meshes/arm.stl"/></geometry></visual>
+    </link>
+    ```
+
+    Use instead (after `git lfs pull`):
+    ```xml
+    <link name="arm">
+      <visual><geometry><mesh filename="package://arm/meshes/arm.stl"/></geometry></visual>
+    </link>
+    ```
+    """
+    yield from _mesh_errors(ctx, {"lfs-pointer"})
+
+
+@rule("M107", "malformed-mesh-file", family=FAMILY, severity=Severity.ERROR, needs=NEEDS)
+def malformed_mesh_file(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a mesh file that cannot be read as a mesh: truncated, a binary STL whose
+    header claims more triangles than the file holds, NaN or infinite coordinates, face
+    indices out of range, no triangles, an unsupported format, or over the size limits.
+
+    The message names the cause (`truncated`, `non-finite`, `bad-index`, `too-large`, ...).
+
+    Why is this bad?
+    Consumers crash, hang allocating for a bogus header, or silently load garbage (NaN
+    vertices poison every computation that touches them).
+
+    Example
+    ```xml
+    <link name="arm">
+      <!-- arm.stl was cut short by an interrupted copy -->
+      <collision><geometry><mesh filename="package://arm/meshes/arm.stl"/></geometry></collision>
+    </link>
+    ```
+
+    Use instead (a complete export):
+    ```xml
+    <link name="arm">
+      <collision><geometry><mesh filename="package://arm/meshes/arm_fixed.stl"/></geometry></collision>
+    </link>
+    ```
+    """
+    yield from _mesh_errors(ctx, None, exclude={"lfs-pointer"})
+
+
+@rule("M108", "mesh-in-millimetres", family=FAMILY, severity=Severity.WARNING, needs=NEEDS)
+def mesh_in_millimetres(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a mesh about a thousand times larger than the robot it belongs to: one
+    exported in millimetres and used without `scale="0.001 0.001 0.001"`.
+
+    The robot's size is taken from its joint positions (and from its other meshes); the
+    mesh is reported when it is far larger and a thousandth of it would fit.
+
+    Why is this bad?
+    The link is drawn and collides as a building-sized object, and mass properties from it
+    are off by 1e6 (inertia) or 1e9 (volume).
+
+    Example
+    ```xml
+    <link name="arm">
+      <visual><geometry><mesh filename="package://arm/meshes/arm_mm.stl"/></geometry></visual>
+    </link>
+    ```
+
+    Use instead:
+    ```xml
+    <link name="arm">
+      <visual><geometry><mesh filename="package://arm/meshes/arm_mm.stl" scale="0.001 0.001 0.001"/></geometry></visual>
+    </link>
+    ```
+    """
+    if ctx.meshes is None:
+        return
+    from robotdesc.mesh.scale_check import looks_like_millimetres, robot_size
+
+    entries = [(link, kind, index, ref, found.summary)
+               for link, kind, index, ref, found in _lookups(ctx) if found.summary is not None]
+    size = robot_size(robot)
+    sizes = [_diagonal(summary) for *_, summary in entries]
+    for (link, kind, index, ref, summary), diagonal in zip(entries, sizes):
+        others = sizes[:]
+        others.remove(diagonal)
+        if looks_like_millimetres(diagonal, size, others):
+            yield Finding(f"'{ref.filename}' is {diagonal:.4g} m across, while the robot's "
+                          f"joints span {size:.3g} m: it looks like millimetres (add "
+                          'scale="0.001 0.001 0.001" or re-export in metres)', ref.where,
+                          _element(link, kind, index))
+
+
+def _diagonal(summary) -> float:
+    x, y, z = summary.extent
+    return (x * x + y * y + z * z) ** 0.5
+
+
+def _health_findings(ctx: RuleContext, check) -> Iterator[Finding]:
+    for link, kind, index, ref, found in _lookups(ctx, physical_only=True):
+        if found.summary is not None:
+            message = check(found.summary)
+            if message:
+                yield Finding(f"'{ref.filename}' ({kind} of '{link.name}') {message}",
+                              ref.where, _element(link, kind, index))
+
+
+@rule("M109", "mesh-not-watertight", family=FAMILY, severity=Severity.WARNING, needs=NEEDS)
+def mesh_not_watertight(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a collision mesh (or a visual mesh used for mass properties) that is not
+    closed: it has holes (boundary edges) or edges shared by more than two faces.
+
+    The message says how its mass properties were obtained instead (holes capped, or the
+    convex hull).
+
+    Why is this bad?
+    An open surface has no inside: its volume, centre of mass and inertia are undefined,
+    and physics engines that test for penetration (Bullet's GImpact, signed distance
+    fields) give wrong contacts.
+
+    Example
+    ```xml
+    <link name="arm">
+      <collision><geometry><mesh filename="package://arm/meshes/arm_open.stl"/></geometry></collision>
+    </link>
+    ```
+
+    Use instead (a closed mesh, for example `robotdesc collision`'s output):
+    ```xml
+    <link name="arm">
+      <collision><geometry><mesh filename="package://arm/meshes/arm_closed.stl"/></geometry></collision>
+    </link>
+    ```
+    """
+    def check(summary):
+        health = summary.health
+        if health.watertight:
+            return None
+        parts = []
+        if health.boundary_edges:
+            parts.append(f"{health.boundary_edges} boundary edges in {health.hole_loops} holes")
+        if health.nonmanifold_edges:
+            parts.append(f"{health.nonmanifold_edges} non-manifold edges")
+        return (f"is not watertight ({', '.join(parts)}); mass properties: "
+                f"{summary.method.value}")
+
+    yield from _health_findings(ctx, check)
+
+
+@rule("M110", "mesh-inconsistent-winding", family=FAMILY, severity=Severity.WARNING,
+      needs=NEEDS)
+def mesh_inconsistent_winding(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a collision mesh whose neighbouring faces disagree on their orientation.
+
+    Why is this bad?
+    Normals flip from face to face: engines that read face normals get contacts pushing
+    the wrong way, and the volume integral is meaningless (robotdesc falls back to the
+    convex hull).
+
+    Example
+    ```xml
+    <link name="arm">
+      <collision><geometry><mesh filename="package://arm/meshes/arm_mixed.stl"/></geometry></collision>
+    </link>
+    ```
+
+    Use instead (re-oriented, e.g. MeshLab's "Re-Orient all faces coherently"):
+    ```xml
+    <link name="arm">
+      <collision><geometry><mesh filename="package://arm/meshes/arm_oriented.stl"/></geometry></collision>
+    </link>
+    ```
+    """
+    def check(summary):
+        if summary.health.consistent_winding:
+            return None
+        return (f"has {summary.health.misoriented_edges} edges where the winding flips; "
+                f"mass properties: {summary.method.value}")
+
+    yield from _health_findings(ctx, check)
+
+
+@rule("M111", "mesh-inverted", family=FAMILY, severity=Severity.WARNING, needs=NEEDS)
+def mesh_inverted(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a closed collision mesh whose faces all point inward (a negative volume).
+
+    Why is this bad?
+    Engines treat the outside as the inside: contacts pull objects in instead of pushing
+    them out, and tools that trust the winding compute a negative mass.
+
+    Example
+    ```xml
+    <link name="arm">
+      <collision><geometry><mesh filename="package://arm/meshes/arm_inside_out.stl"/></geometry></collision>
+    </link>
+    ```
+
+    Use instead (faces flipped):
+    ```xml
+    <link name="arm">
+      <collision><geometry><mesh filename="package://arm/meshes/arm.stl"/></geometry></collision>
+    </link>
+    ```
+    """
+    def check(summary):
+        if summary.signed_volume < 0 and summary.health.encloses_volume:
+            return (f"is inverted: its faces point inward (signed volume "
+                    f"{summary.signed_volume:.4g} m^3)")
+        return None
+
+    yield from _health_findings(ctx, check)
+
+
+@rule("M112", "mesh-degenerate-faces", family=FAMILY, severity=Severity.INFO, needs=NEEDS)
+def mesh_degenerate_faces(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a collision mesh with degenerate faces (a repeated vertex or no area), or one
+    that encloses no volume at all.
+
+    Why is this bad?
+    Zero-area faces have no normal: collision checkers skip them or divide by zero, and
+    they are a sign of a careless export.
+
+    Example
+    ```xml
+    <link name="arm">
+      <collision><geometry><mesh filename="package://arm/meshes/arm_raw_export.stl"/></geometry></collision>
+    </link>
+    ```
+
+    Use instead (cleaned):
+    ```xml
+    <link name="arm">
+      <collision><geometry><mesh filename="package://arm/meshes/arm_clean.stl"/></geometry></collision>
+    </link>
+    ```
+    """
+    def check(summary):
+        if summary.properties is None:
+            return "encloses no volume (all its points are coplanar)"
+        count = summary.health.degenerate_faces
+        if count:
+            return (f"has {count} degenerate faces (of {summary.health.triangles})")
+        return None
+
+    yield from _health_findings(ctx, check)
+
+
+@rule("M113", "collision-uses-visual-mesh", family=FAMILY, severity=Severity.WARNING,
+      needs=NEEDS)
+def collision_uses_visual_mesh(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a collision geometry that is the link's visual mesh file itself, when that
+    mesh has more triangles than the collision budget.
+
+    Why is this bad?
+    Visual meshes are detailed for looks; as collision geometry they make every contact
+    query slow. The Engineer robot's authors measured a real-time factor of 0.2 in Gazebo
+    with visual meshes as collision, against 1 with simple shapes.
+
+    Example
+    ```xml
+    <link name="arm">
+      <visual><geometry><mesh filename="package://arm/meshes/arm.dae"/></geometry></visual>
+      <collision><geometry><mesh filename="package://arm/meshes/arm.dae"/></geometry></collision>
+    </link>
+    ```
+
+    Use instead (a simplified mesh or primitives; `robotdesc collision` makes them):
+    ```xml
+    <link name="arm">
+      <visual><geometry><mesh filename="package://arm/meshes/arm.dae"/></geometry></visual>
+      <collision><geometry><mesh filename="package://arm/meshes/arm_collision.stl"/></geometry></collision>
+    </link>
+    ```
+    """
+    if ctx.meshes is None:
+        return
+    budget = ctx.meshes.settings.collision_triangle_budget
+    visual_paths: dict[str, set[str]] = {}
+    entries = list(_lookups(ctx))
+    for link, kind, _index, _ref, found in entries:
+        if kind == "visual" and found.resolution.ok:
+            visual_paths.setdefault(link.name, set()).add(found.resolution.path)
+    for link, kind, index, ref, found in entries:
+        if kind != "collision" or not found.resolution.ok:
+            continue
+        if found.resolution.path in visual_paths.get(link.name, ()):
+            triangles = found.summary.health.triangles if found.summary else 0
+            if triangles > budget:
+                yield Finding(f"collision of '{link.name}' uses its visual mesh "
+                              f"'{ref.filename}' ({triangles} triangles, budget {budget}): "
+                              "use a simplified mesh or primitives", ref.where,
+                              _element(link, kind, index))
+
+
+@rule("M114", "collision-mesh-over-budget", family=FAMILY, severity=Severity.WARNING,
+      needs=NEEDS)
+def collision_mesh_over_budget(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a collision mesh with more triangles than the budget
+    (`[tool.robotdesc.meshes] collision-triangle-budget`, 10 000 by default) that is not
+    the link's visual mesh (that case is M113's).
+
+    Why is this bad?
+    Collision checking costs grow with the triangle count; a physics engine steps slower
+    than real time and a planner's collision checks dominate its run time.
+
+    Example
+    ```xml
+    <link name="arm">
+      <collision><geometry><mesh filename="package://arm/meshes/arm_fine.stl"/></geometry></collision>
+    </link>
+    ```
+
+    Use instead:
+    ```xml
+    <link name="arm">
+      <collision><geometry><mesh filename="package://arm/meshes/arm_decimated.stl"/></geometry></collision>
+    </link>
+    ```
+    """
+    if ctx.meshes is None:
+        return
+    budget = ctx.meshes.settings.collision_triangle_budget
+    entries = list(_lookups(ctx))
+    visual_paths = {(link.name, found.resolution.path) for link, kind, _i, _r, found in entries
+                    if kind == "visual" and found.resolution.ok}
+    for link, kind, index, ref, found in entries:
+        if kind != "collision" or found.summary is None:
+            continue
+        if (link.name, found.resolution.path) in visual_paths:
+            continue
+        triangles = found.summary.health.triangles
+        if triangles > budget:
+            yield Finding(f"collision mesh '{ref.filename}' of '{link.name}' has {triangles} "
+                          f"triangles, over the budget of {budget}", ref.where,
+                          _element(link, kind, index))
+
+
+@rule("M115", "link-without-collision", family=FAMILY, severity=Severity.WARNING)
+def link_without_collision(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a link that has a `<visual>` but no `<collision>`, in a description meant for
+    dynamics (one in which some moving link declares a mass). Placeholder links lighter
+    than a gram are skipped.
+
+    Why is this bad?
+    In simulation the link passes through the floor and through other links; planners do
+    not avoid it. If that is intended (a decorative part), say so with a suppression.
+
+    Example
+    ```xml
+    <robot name="arm">
+      <link name="base"/>
+      <link name="arm">
+        <inertial><mass value="1"/>
+          <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+        <visual><geometry><box size="0.1 0.1 0.4"/></geometry></visual>
+      </link>
+      <joint name="shoulder" type="continuous"><parent link="base"/><child link="arm"/></joint>
+    </robot>
+    ```
+
+    Use instead:
+    ```xml
+    <robot name="arm">
+      <link name="base"/>
+      <link name="arm">
+        <inertial><mass value="1"/>
+          <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+        <visual><geometry><box size="0.1 0.1 0.4"/></geometry></visual>
+        <collision><geometry><box size="0.1 0.1 0.4"/></geometry></collision>
+      </link>
+      <joint name="shoulder" type="continuous"><parent link="base"/><child link="arm"/></joint>
+    </robot>
+    ```
+    """
+    if not is_dynamics_model(robot):
+        return
+    for link in robot.links:
+        dummy = link.inertial is not None and link.inertial.mass is not None \
+            and link.inertial.mass < DUMMY_MASS
+        if link.visuals and not link.collisions and not dummy:
+            yield Finding(f"link '{link.name}' has {len(link.visuals)} visual(s) but no "
+                          "collision: it passes through everything in simulation",
+                          link.where, f"link:{link.name}")

@@ -1,0 +1,217 @@
+"""Classify every link pair as MoveIt's Setup Assistant does: Adjacent, Default, Always, Never.
+
+- Adjacent: a joint connects the links (or only links without collision geometry lie between).
+- Default: they collide at the default configuration (each joint at 0, or at the middle of
+  its range when 0 is outside it, as MoveIt sets it).
+- Always: they collide in at least `always_fraction` of the samples.
+- Never: they never collide in the N samples (never *in N samples*, not a proof).
+Pairs colliding sometimes stay enabled. Samples are checked in parallel processes; the
+collision counts are sums, so the result does not depend on the number of workers.
+"""
+
+from __future__ import annotations
+
+import enum
+import logging
+import multiprocessing
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass
+
+import numpy as np
+
+from robotdesc.kinematics import tree
+from robotdesc.kinematics.build import KinematicModel, build_model
+from robotdesc.kinematics.configuration import default_configuration
+from robotdesc.kinematics.geometry import ShapeProblem, collision_shapes
+from robotdesc.kinematics.scene import CollisionScene, SceneSpec, all_link_pairs
+from robotdesc.kinematics.urdf_text import MeshPath
+from robotdesc.model.elements import Robot
+from robotdesc.srdf.sampling import sample_positions
+
+log = logging.getLogger(__name__)
+
+#: MoveIt Setup Assistant's default threshold for "always in collision".
+ALWAYS_FRACTION = 0.95
+#: Below this many samples the work stays in this process (starting workers costs ~1 s).
+PARALLEL_MIN_SAMPLES = 2000
+
+
+class Reason(str, enum.Enum):
+    """Why a pair's collision checking is disabled (the SRDF `reason` attribute)."""
+
+    ADJACENT = "Adjacent"
+    DEFAULT = "Default"
+    ALWAYS = "Always"
+    NEVER = "Never"
+
+
+@dataclass(frozen=True)
+class PairResult:
+    """One link pair.
+
+    Attributes:
+        link1: the first link (names sorted).
+        link2: the second link.
+        reason: why checking is disabled; None when the pair stays enabled.
+        collisions: in how many samples the pair collided (0 for adjacent pairs: not sampled).
+        samples: how many samples were checked for this pair (0 for adjacent pairs).
+        at_default: the pair collides at the default configuration.
+    """
+
+    link1: str
+    link2: str
+    reason: Reason | None
+    collisions: int = 0
+    samples: int = 0
+    at_default: bool = False
+
+    @property
+    def fraction(self) -> float | None:
+        """Fraction of samples in collision (None when not sampled)."""
+        return self.collisions / self.samples if self.samples else None
+
+
+@dataclass(frozen=True)
+class CollisionMatrix:
+    """The classified pairs of a robot and how they were found.
+
+    Attributes:
+        robot: the robot's name.
+        pairs: every pair of links with collision geometry, sorted.
+        samples: N, the number of random configurations checked.
+        seed: the random seed (the same seed gives the same matrix).
+        always_fraction: the fraction of samples above which a pair is "Always".
+        default_positions: the default configuration, joint name -> position (rad or m).
+        links_without_geometry: links with no usable collision geometry (never checked).
+        problems: collision elements left out (unresolved or unreadable meshes).
+        convex: meshes were checked as their convex hulls.
+    """
+
+    robot: str
+    pairs: tuple[PairResult, ...]
+    samples: int
+    seed: int
+    always_fraction: float = ALWAYS_FRACTION
+    default_positions: tuple[tuple[str, float], ...] = ()
+    links_without_geometry: tuple[str, ...] = ()
+    problems: tuple[ShapeProblem, ...] = ()
+    convex: bool = False
+
+    def disabled(self) -> list[PairResult]:
+        """The pairs written to the SRDF as `<disable_collisions>`."""
+        return [pair for pair in self.pairs if pair.reason is not None]
+
+
+@dataclass(frozen=True, eq=False)
+class PreparedScene:
+    """The pieces shared by the matrix and the default-pose rule."""
+
+    kinematics: KinematicModel
+    spec: SceneSpec
+    adjacent: frozenset[tuple[str, str]]
+    links_without_geometry: tuple[str, ...]
+    problems: tuple[ShapeProblem, ...]
+
+
+def prepare_scene(robot: Robot, mesh_path: MeshPath, convex: bool = False) -> PreparedScene:
+    """Build the Pinocchio model and the non-adjacent pairs of links with geometry.
+
+    Raises:
+        KinematicsUnavailable: Pinocchio is not installed.
+        KinematicBuildError: Pinocchio refused the model.
+    """
+    kinematics = build_model(robot, mesh_path)
+    shapes, problems = collision_shapes(robot, mesh_path)
+    solid = sorted({shape.link for shape in shapes})
+    adjacent = frozenset(tree.adjacent_pairs(robot, solid))
+    pairs = tuple(p for p in all_link_pairs(solid) if p not in adjacent)
+    empty = tuple(link.name for link in robot.links if link.name not in set(solid))
+    return PreparedScene(kinematics, SceneSpec(kinematics.urdf, tuple(shapes), pairs, convex),
+                         adjacent, empty, tuple(problems))
+
+
+def default_collisions(prepared: PreparedScene) -> list[tuple[str, str]]:
+    """Non-adjacent link pairs that collide at the default configuration."""
+    robot = prepared.kinematics.robot
+    q = prepared.kinematics.configuration(default_configuration(robot))
+    touching = CollisionScene(prepared.spec).colliding(q)
+    return [pair for pair, hit in zip(prepared.spec.pairs, touching) if hit]
+
+
+def compute_matrix(robot: Robot, mesh_path: MeshPath, *, samples: int = 10000, seed: int = 0,
+                   workers: int = 2, always_fraction: float = ALWAYS_FRACTION,
+                   convex: bool = False) -> CollisionMatrix:
+    """The self-collision matrix of `robot`.
+
+    Args:
+        robot: the parsed robot.
+        mesh_path: resolves `<mesh>` references (see kinematics.resolve.mesh_resolver).
+        samples: N, random configurations to check.
+        seed: random seed; the same seed gives the same result.
+        workers: processes checking samples in parallel (1: in this process).
+        always_fraction: pairs colliding in at least this fraction of samples are "Always".
+        convex: check meshes as their convex hulls (faster; may disable fewer pairs).
+    """
+    prepared = prepare_scene(robot, mesh_path, convex)
+    defaults = set(default_collisions(prepared))
+    names, positions = sample_positions(robot, samples, seed)
+    q = prepared.kinematics.configurations(names, positions)
+    counts = _count_collisions(prepared.spec, q, workers)
+    results = [PairResult(a, b, Reason.ADJACENT) for a, b in sorted(prepared.adjacent)]
+    for pair, count in zip(prepared.spec.pairs, counts):
+        count = int(count)
+        if pair in defaults:
+            reason = Reason.DEFAULT
+        elif samples and count >= always_fraction * samples:
+            reason = Reason.ALWAYS
+        elif count == 0:
+            reason = Reason.NEVER
+        else:
+            reason = None
+        results.append(PairResult(pair[0], pair[1], reason, count, samples, pair in defaults))
+    results.sort(key=lambda r: (r.link1, r.link2))
+    default_positions = tuple(sorted(default_configuration(robot).items()))
+    return CollisionMatrix(robot.name, tuple(results), samples, seed, always_fraction,
+                           default_positions, prepared.links_without_geometry,
+                           prepared.problems, convex)
+
+
+def _count_collisions(spec: SceneSpec, q: np.ndarray, workers: int) -> np.ndarray:
+    """Per pair of `spec.pairs`: in how many rows of `q` it collides."""
+    if not spec.pairs or len(q) == 0:
+        return np.zeros(len(spec.pairs), dtype=np.int64)
+    if workers <= 1 or len(q) < PARALLEL_MIN_SAMPLES:
+        return _count_in(CollisionScene(spec), q)
+    chunks = np.array_split(q, workers * 4)
+    context = multiprocessing.get_context(_start_method())
+    with ProcessPoolExecutor(workers, mp_context=context, initializer=_start_worker,
+                             initargs=(spec,)) as pool:
+        return sum(pool.map(_count_chunk, chunks), np.zeros(len(spec.pairs), dtype=np.int64))
+
+
+def _start_method() -> str:
+    """fork on Linux (no re-import, and no `if __name__ == "__main__"` needed in a caller's
+    script); spawn elsewhere (fork is unsafe on macOS)."""
+    import sys
+
+    return "fork" if sys.platform.startswith("linux") else "spawn"
+
+
+def _count_in(scene: CollisionScene, q: np.ndarray) -> np.ndarray:
+    counts = np.zeros(len(scene.spec.pairs), dtype=np.int64)
+    for row in q:
+        counts += scene.colliding(row)
+    return counts
+
+
+_WORKER_SCENE: CollisionScene | None = None
+
+
+def _start_worker(spec: SceneSpec) -> None:
+    global _WORKER_SCENE
+    _WORKER_SCENE = CollisionScene(spec)
+
+
+def _count_chunk(q: np.ndarray) -> np.ndarray:
+    assert _WORKER_SCENE is not None, "worker not initialised"
+    return _count_in(_WORKER_SCENE, q)

@@ -1,0 +1,29 @@
+"""Fault injection for the worker tests: module-level, so a worker process can import it."""
+
+from __future__ import annotations
+
+import os
+import signal
+
+from robotdesc.collision.link import run_link
+
+
+def crash_on_bad_link(task):
+    """Like run_link, but the process dies by SIGSEGV on the link named 'bad'."""
+    if task.link == "bad":
+        os.kill(os.getpid(), signal.SIGSEGV)
+    return run_link(task)
+
+
+def sleep_forever(_argument):
+    import time
+
+    time.sleep(60)
+
+
+def square(value):
+    return value * value
+
+
+def raise_error(_argument):
+    raise RuntimeError("boom")

@@ -1,0 +1,49 @@
+import json
+import subprocess
+import sys
+
+import pytest
+
+pytest.importorskip("pinocchio")
+
+from robotdesc.errors import UsageError  # noqa: E402
+from robotdesc.kinematics.info import robot_info  # noqa: E402
+
+from kinematics.robots import ARM, robot  # noqa: E402
+from support import REPO  # noqa: E402
+
+
+def test_counts_mass_and_centre_of_mass() -> None:
+    info = robot_info(robot(ARM))
+    assert info.links == 6 and dict(info.joints_by_type)["prismatic"] == 2
+    assert info.dof == 3 and [m.joint for m in info.mimic] == ["hand_twin"]
+    assert info.total_mass == pytest.approx(8.5)
+    # upper's COM is 0.1 above its frame (z 0.3); fore and hand sit at z 0.6 and 0.8 at zero
+    expected_z = (5 * 0 + 2 * 0.4 + 1 * 0.6 + 0.5 * 0.8) / 8.5
+    assert info.com_zero[2] == pytest.approx(expected_z)
+    assert info.bounds[0][2] == pytest.approx(-0.2)
+
+
+def test_centre_of_mass_at_a_configuration() -> None:
+    info = robot_info(robot(ARM), positions={"hand_joint": 0.2})
+    assert info.com_at[2] - info.com_zero[2] == pytest.approx(0.5 * 0.2 / 8.5)
+    assert dict(info.configuration)["hand_twin"] == pytest.approx(0.5)
+
+
+def test_unknown_joint_in_positions_is_a_usage_error() -> None:
+    with pytest.raises(UsageError, match="hand_twin"):
+        robot_info(robot(ARM), positions={"hand_twin": 0.2})
+
+
+def test_info_command_prints_json(tmp_path) -> None:
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM)
+    done = subprocess.run([sys.executable, "-m", "robotdesc", "info", str(path), "--format",
+                           "json", "--q", "elbow=0.3"], capture_output=True, text=True,
+                          cwd=REPO, timeout=120)
+    assert done.returncode == 0, done.stderr
+    report = json.loads(done.stdout)
+    assert report["dof"] == 3 and report["configuration"]["elbow"] == 0.3
+    bad = subprocess.run([sys.executable, "-m", "robotdesc", "info", str(path), "--q", "elbow"],
+                         capture_output=True, text=True, cwd=REPO, timeout=120)
+    assert bad.returncode == 2 and "JOINT=VALUE" in bad.stderr

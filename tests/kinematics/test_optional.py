@@ -1,0 +1,27 @@
+import logging
+import sys
+
+import pytest
+
+from robotdesc.kinematics.optional import KinematicsUnavailable, import_pinocchio
+from robotdesc.rules.registry import RuleContext, get_rule, run_rule
+
+from kinematics.robots import ARM, robot
+
+
+def test_missing_pinocchio_is_an_input_error_that_says_how_to_install(monkeypatch) -> None:
+    monkeypatch.setitem(sys.modules, "pinocchio", None)
+    with pytest.raises(KinematicsUnavailable, match=r"robotdesc\[kinematics\]") as caught:
+        import_pinocchio("robotdesc srdf")
+    assert caught.value.exit_code == 2
+
+
+def test_rules_needing_pinocchio_are_skipped_with_a_note(monkeypatch, caplog) -> None:
+    import robotdesc.rules.kinematics as family
+
+    monkeypatch.setattr("robotdesc.kinematics.optional.pinocchio_available", lambda: False)
+    monkeypatch.setattr(family, "_NOTED", set())
+    caplog.set_level(logging.WARNING, logger="robotdesc")
+    arm = robot(ARM)
+    assert list(run_rule(get_rule("K201"), arm, RuleContext())) == []
+    assert "K201 skipped: Pinocchio is not installed" in caplog.text

@@ -1,0 +1,1 @@
+"""Tests of robotdesc.sim (a package so that test module names stay unique)."""

@@ -1,0 +1,64 @@
+import pytest
+
+pytest.importorskip("pinocchio")
+
+import robotdesc.srdf.matrix as matrix_module  # noqa: E402
+from robotdesc.srdf.matrix import Reason, compute_matrix  # noqa: E402
+
+from kinematics.robots import ARM, INERTIA, robot  # noqa: E402
+
+#: b (a small sphere) always sits inside a's box; "orbit" slides through it half the time;
+#: m carries a sphere far above, so a and b are not adjacent.
+ALWAYS = f"""<robot name="r">
+  <link name="a"><collision><geometry><box size="1 1 1"/></geometry></collision></link>
+  <link name="m"><inertial><mass value="1"/>{INERTIA}</inertial>
+    <collision><origin xyz="0 0 3"/><geometry><sphere radius="0.1"/></geometry></collision></link>
+  <link name="b"><collision><geometry><sphere radius="0.1"/></geometry></collision></link>
+  <link name="far"><collision><geometry><sphere radius="0.1"/></geometry></collision></link>
+  <link name="orbit"><collision><geometry><sphere radius="0.1"/></geometry></collision></link>
+  <link name="n"/>
+  <joint name="j" type="revolute"><parent link="a"/><child link="m"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="k" type="fixed"><parent link="m"/><child link="n"/><origin xyz="0 0 0.1"/></joint>
+  <joint name="mb" type="continuous"><parent link="n"/><child link="b"/></joint>
+  <joint name="far_joint" type="fixed"><parent link="a"/><child link="far"/><origin xyz="5 0 0"/></joint>
+  <joint name="slide" type="prismatic"><parent link="far"/><child link="orbit"/>
+    <axis xyz="1 0 0"/><limit lower="-5" upper="-3.6" effort="1" velocity="1"/></joint>
+</robot>"""
+
+
+def reasons(matrix) -> dict[tuple[str, str], Reason | None]:
+    return {(p.link1, p.link2): p.reason for p in matrix.pairs}
+
+
+def test_arm_pairs_are_classified() -> None:
+    matrix = compute_matrix(robot(ARM), lambda mesh: None, samples=300, seed=1, workers=1)
+    found = reasons(matrix)
+    assert found[("base", "upper")] is Reason.ADJACENT
+    assert found[("fore", "hand")] is Reason.ADJACENT  # through the geometry-less wrist
+    assert found[("base", "fore")] is Reason.DEFAULT
+    assert found[("base", "hand")] is Reason.NEVER
+    assert matrix.links_without_geometry == ("wrist", "twin")
+
+
+def test_always_and_sometimes() -> None:
+    matrix = compute_matrix(robot(ALWAYS), lambda mesh: None, samples=200, seed=0, workers=1,
+                            always_fraction=0.95)
+    found = reasons(matrix)
+    assert found[("a", "b")] is Reason.DEFAULT  # default wins over always
+    assert found[("a", "far")] is Reason.ADJACENT
+    assert found[("b", "far")] is Reason.NEVER
+    assert found[("a", "orbit")] is None  # sometimes: left enabled
+    pair = next(p for p in matrix.pairs if (p.link1, p.link2) == ("a", "b"))
+    assert pair.fraction == 1.0 and pair.at_default
+    sometimes = next(p for p in matrix.pairs if (p.link1, p.link2) == ("a", "orbit"))
+    assert 0.35 < sometimes.fraction < 0.65
+
+
+def test_parallel_workers_give_the_same_counts(monkeypatch) -> None:
+    monkeypatch.setattr(matrix_module, "PARALLEL_MIN_SAMPLES", 10)
+    sliding = robot(ALWAYS)
+    one = compute_matrix(sliding, lambda mesh: None, samples=400, seed=5, workers=1)
+    two = compute_matrix(sliding, lambda mesh: None, samples=400, seed=5, workers=2)
+    assert one.pairs == two.pairs
+    assert any(p.reason is None and 0 < p.collisions < 400 for p in one.pairs)
