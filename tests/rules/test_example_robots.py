@@ -54,12 +54,21 @@ def test_all_rules_run_on_example_robot(path: Path) -> None:
 
 
 def test_clean_example_robots_stay_clean() -> None:
-    for name in ("panda.urdf", "ur5_robot.urdf", "solo12.urdf", "go1.urdf"):
+    for name in ("ur5_robot.urdf", "solo12.urdf"):
         assert lint(name) == [], name
 
 
-def test_z1_links_with_visual_but_no_collision() -> None:
-    assert Counter(code for code, _ in lint("z1.urdf")) == Counter({"M115": 2})
+def test_go1_calf_limits_exclude_zero_and_rotors_sit_inside_the_trunk() -> None:
+    assert Counter(code for code, _ in lint("go1.urdf")) == Counter({"K102": 4, "K201": 4, "K104": 1})
+
+
+def test_panda_joint4_limits_exclude_the_zero_configuration() -> None:
+    assert located("panda.urdf", "K102") == {("joint:panda_joint4", 124)}
+    assert Counter(code for code, _ in lint("panda.urdf")) == Counter({"K102": 1})
+
+
+def test_z1_links_without_collision_and_overlapping_at_zero() -> None:
+    assert Counter(code for code, _ in lint("z1.urdf")) == Counter({"M115": 2, "K201": 1})
 
 
 def test_ur3_urdf_is_an_empty_robot_without_a_name() -> None:

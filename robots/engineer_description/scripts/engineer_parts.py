@@ -36,7 +36,7 @@ def chassis(g: dict[str, float]) -> Manifold:
     for k in range(10):
         x = -0.08 + 0.0275 * k
         for y in (-0.05, 0.05):
-            if 0.05 < x < 0.075 and y < 0:
+            if -0.02 < x < 0.02 and y < 0:
                 continue  # leave room for the sealed connector
             parts.append(cyl_z(0.0035, zt - 0.001, zt + 0.0015, x, y, SEG_SMALL))
     # turntable race for the waist

@@ -30,7 +30,7 @@ def coacd_decompose(vertices: np.ndarray, faces: np.ndarray, *, threshold: float
         seed: random seed.
 
     Raises:
-        ImportError: coacd is not installed (`pip install robotdesc[collision]`).
+        ImportError: coacd is not installed (it is a dependency of robotdesc: reinstall robotdesc).
         NoVolumeError: CoACD returned nothing with volume.
     """
     os.environ.setdefault("OMP_NUM_THREADS", "1")  # before libgomp loads: jobs parallelise

@@ -73,7 +73,7 @@ def run_link(task: LinkTask) -> LinkOutcome:
     except ImportError as error:
         return _failed(base, start, Finding(
             "backend-missing", "error",
-            f"{error.name or error}: install robotdesc[collision] for this method"))
+            f"{error.name or error}: reinstall robotdesc (its collision dependencies are missing)"))
     surface = [_as_mesh(p) for p in made.parts]
     findings = list(made.findings)
     if options.method == "decimate" and measured.hausdorff_percent > options.target_percent:

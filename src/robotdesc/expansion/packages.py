@@ -71,8 +71,15 @@ def workspace_root(package_dir: Path) -> Path:
 def crawl_packages(root: Path, max_depth: int = _MAX_SEARCH_DEPTH) -> dict[str, Path]:
     """Every package under `root` (not descending into a package), name -> folder.
 
-    The first folder found (sorted walk) wins when two packages share a name.
+    The first folder found (sorted walk) wins when two packages share a name. Results are
+    remembered for the life of the process (a lint run; packages do not appear mid-run).
     """
+    return dict(_crawl_packages_cached(str(root), max_depth))
+
+
+@functools.lru_cache(maxsize=256)
+def _crawl_packages_cached(root_text: str, max_depth: int) -> tuple[tuple[str, Path], ...]:
+    root = Path(root_text)
     found: dict[str, Path] = {}
 
     def visit(folder: Path, depth: int) -> None:
@@ -95,7 +102,7 @@ def crawl_packages(root: Path, max_depth: int = _MAX_SEARCH_DEPTH) -> dict[str, 
 
     if root.is_dir():
         visit(root, 0)
-    return found
+    return tuple(found.items())
 
 
 @dataclass(frozen=True)

@@ -1,16 +1,21 @@
-"""Pure-Python arithmetic on symmetric 3x3 inertia tensors (kg*m^2), no numpy needed.
+"""Pure-Python arithmetic on 3-vectors, rotations and symmetric 3x3 inertia tensors.
 
-The structural inertia rules run on every lint, so they avoid importing numpy.
+The one implementation of this small per-link math: the structural inertia rules, the
+mesh-derived link properties and the comparisons all use it, and they run on every lint, so
+none of it imports numpy (numpy is for bulk triangle integrals only). Units: lengths in m,
+angles in rad, inertia in kg*m^2.
 """
 
 from __future__ import annotations
 
 import math
-from typing import Sequence
+from typing import Iterable, Sequence
 
 Vec3 = tuple[float, float, float]
 Mat3 = tuple[Vec3, Vec3, Vec3]
 
+#: The zero tensor.
+ZERO: Mat3 = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
 #: The densest element (osmium, kg/m^3): no solid is denser.
 MAX_MATERIAL_DENSITY = 22_600.0
 
@@ -65,14 +70,19 @@ def minimum_trace(mass: float, max_density: float = MAX_MATERIAL_DENSITY) -> flo
 
 def rotated(matrix: Sequence[Sequence[float]], rpy: Sequence[float]) -> Mat3:
     """R M R^T with R from URDF roll-pitch-yaw (rad): R = Rz(yaw) Ry(pitch) Rx(roll)."""
-    r = rpy_rotation(rpy)
+    return conjugated(matrix, rpy_rotation(rpy))
+
+
+def conjugated(matrix: Sequence[Sequence[float]], rotation: Sequence[Sequence[float]]) -> Mat3:
+    """R M R^T: a tensor given in a rotated frame, expressed in the parent frame."""
+    r = rotation
     rm = [[sum(r[i][k] * matrix[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
     out = [[sum(rm[i][k] * r[j][k] for k in range(3)) for j in range(3)] for i in range(3)]
     return _mat3(out)
 
 
 def rpy_rotation(rpy: Sequence[float]) -> Mat3:
-    """URDF's rotation matrix from roll, pitch, yaw (rad)."""
+    """URDF's rotation matrix from roll, pitch, yaw (rad): R = Rz(yaw) Ry(pitch) Rx(roll)."""
     roll, pitch, yaw = (float(v) for v in rpy)
     cr, sr = math.cos(roll), math.sin(roll)
     cp, sp = math.cos(pitch), math.sin(pitch)
@@ -80,6 +90,69 @@ def rpy_rotation(rpy: Sequence[float]) -> Mat3:
     return _mat3([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
                   [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
                   [-sp, cp * sr, cp * cr]])
+
+
+def rotate(rotation: Sequence[Sequence[float]], vector: Sequence[float]) -> Vec3:
+    """R v."""
+    x, y, z = vector
+    a, b, c = (row[0] * x + row[1] * y + row[2] * z for row in rotation)
+    return (a, b, c)
+
+
+def compose(first: Sequence[Sequence[float]], second: Sequence[Sequence[float]]) -> Mat3:
+    """The matrix product first @ second."""
+    return _mat3([[sum(first[i][k] * second[k][j] for k in range(3)) for j in range(3)]
+                  for i in range(3)])
+
+
+def add(a: Sequence[float], b: Sequence[float]) -> Vec3:
+    """a + b."""
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+
+def subtract(a: Sequence[float], b: Sequence[float]) -> Vec3:
+    """a - b."""
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+def norm(values: Sequence[float]) -> float:
+    """Euclidean length of a vector."""
+    return math.sqrt(sum(v * v for v in values))
+
+
+def frobenius(matrix: Sequence[Sequence[float]]) -> float:
+    """The Frobenius norm of a 3x3 matrix: sqrt of the sum of its squared entries."""
+    return math.sqrt(sum(v * v for row in matrix for v in row))
+
+
+def scaled(matrix: Sequence[Sequence[float]], factor: float) -> Mat3:
+    """factor * M."""
+    return _mat3([[factor * v for v in row] for row in matrix])
+
+
+def difference(a: Sequence[Sequence[float]], b: Sequence[Sequence[float]]) -> Mat3:
+    """A - B."""
+    return _mat3([[x - y for x, y in zip(ra, rb)] for ra, rb in zip(a, b)])
+
+
+def summed(matrices: Iterable[Sequence[Sequence[float]]]) -> Mat3:
+    """The sum of 3x3 matrices (zero for none)."""
+    rows = [[0.0] * 3 for _ in range(3)]
+    for matrix in matrices:
+        for i in range(3):
+            for j in range(3):
+                rows[i][j] += matrix[i][j]
+    return _mat3(rows)
+
+
+def parallel_axis(inertia: Sequence[Sequence[float]], mass: float,
+                  offset: Sequence[float]) -> Mat3:
+    """A body's inertia about a point `offset` (m) away from its centre of mass:
+    I + m (|d|^2 E - d d^T) (the parallel-axis theorem; kg, kg*m^2)."""
+    d = offset
+    square = d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
+    return _mat3([[inertia[i][j] + mass * ((square if i == j else 0.0) - d[i] * d[j])
+                   for j in range(3)] for i in range(3)])
 
 
 def _mat3(rows: Sequence[Sequence[float]]) -> Mat3:

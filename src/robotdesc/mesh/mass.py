@@ -1,4 +1,4 @@
-"""Mass properties of solids: the signed-tetrahedron volume integral, rigid transforms, sums.
+"""Mass properties of triangle meshes: the signed-tetrahedron volume integral over a soup.
 
 Every triangle of a closed, outward-wound mesh spans a signed tetrahedron with a reference
 point; summing their volume, first and second moments gives the solid's exactly (Tonon's
@@ -8,127 +8,34 @@ precision far from the origin).
 
 Units: lengths in metres, volume m^3, mass kg, density kg/m^3, inertia kg*m^2 about the
 centre of mass, expressed in the frame of the geometry.
+
+Only the bulk integrals over triangles use numpy. The body they produce (`MassProperties`),
+rigid transforms and sums are plain Python in `robotdesc.mesh.properties` (re-exported here).
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
-from typing import Iterable, Sequence
+from typing import Sequence
 
 import numpy as np
 
-Vec3 = tuple[float, float, float]
-Mat3 = tuple[Vec3, Vec3, Vec3]
+from robotdesc.inertia.tensor import Mat3, Vec3, rpy_rotation
+from robotdesc.mesh.properties import MassProperties, combine, link_mass_properties
+
+__all__ = ["CHUNK_TRIANGLES", "Mat3", "MassProperties", "Vec3", "VolumeIntegrals", "bounds",
+           "combine", "link_mass_properties", "reference_point", "rpy_matrix",
+           "volume_integrals"]
 
 #: Triangles per numpy chunk: large enough to amortise numpy's call overhead, small enough
 #: for the temporaries to stay in cache.
 CHUNK_TRIANGLES = 1 << 14
 
 
-@dataclass(frozen=True)
-class MassProperties:
-    """A rigid body's mass, centre of mass and inertia about the centre of mass.
-
-    Attributes:
-        mass: kg (for a solid of density 1 kg/m^3, equal to its volume in m^3).
-        center_of_mass: m, in the frame of the geometry.
-        inertia: 3x3 inertia tensor about the centre of mass (kg*m^2), rows of the matrix
-            ((Ixx, Ixy, Ixz), (Ixy, Iyy, Iyz), (Ixz, Iyz, Izz)); products of inertia with the
-            URDF sign convention (Ixy = -integral of x*y dm).
-        volume: m^3 of the solid the mass was spread over.
-    """
-
-    mass: float
-    center_of_mass: Vec3
-    inertia: Mat3
-    volume: float
-
-    @property
-    def density(self) -> float:
-        """kg/m^3 (0 when the volume is 0)."""
-        return self.mass / self.volume if self.volume > 0 else 0.0
-
-    def inertia_matrix(self) -> np.ndarray:
-        """The inertia tensor as a (3, 3) float array (kg*m^2)."""
-        return np.array(self.inertia, dtype=float)
-
-    def principal_moments(self) -> Vec3:
-        """Eigenvalues of the inertia tensor, ascending (kg*m^2)."""
-        values = np.linalg.eigvalsh(self.inertia_matrix())
-        return (float(values[0]), float(values[1]), float(values[2]))
-
-    def scaled_to_mass(self, mass: float) -> MassProperties:
-        """The same solid with uniform density chosen so that its mass is `mass` (kg)."""
-        factor = mass / self.mass if self.mass > 0 else 0.0
-        return MassProperties(mass, self.center_of_mass,
-                              _as_mat3(self.inertia_matrix() * factor), self.volume)
-
-    def with_density(self, density: float) -> MassProperties:
-        """The same solid at uniform `density` (kg/m^3)."""
-        return self.scaled_to_mass(density * self.volume)
-
-    def transformed(self, xyz: Sequence[float] = (0.0, 0.0, 0.0),
-                    rpy: Sequence[float] = (0.0, 0.0, 0.0)) -> MassProperties:
-        """The body expressed in a parent frame where its frame sits at `xyz`, `rpy`.
-
-        Args:
-            xyz: translation of the geometry frame in the parent frame (m).
-            rpy: URDF roll-pitch-yaw of the geometry frame (rad): R = Rz(y) Ry(p) Rx(r).
-        """
-        rotation = rpy_matrix(rpy)
-        center = rotation @ np.asarray(self.center_of_mass) + np.asarray(xyz, dtype=float)
-        inertia = rotation @ self.inertia_matrix() @ rotation.T
-        return MassProperties(self.mass, _as_vec3(center), _as_mat3(inertia), self.volume)
-
-
 def rpy_matrix(rpy: Sequence[float]) -> np.ndarray:
-    """URDF's rotation from roll, pitch, yaw (rad): R = Rz(yaw) @ Ry(pitch) @ Rx(roll)."""
-    roll, pitch, yaw = (float(v) for v in rpy)
-    cr, sr = math.cos(roll), math.sin(roll)
-    cp, sp = math.cos(pitch), math.sin(pitch)
-    cy, sy = math.cos(yaw), math.sin(yaw)
-    return np.array([
-        [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-        [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-        [-sp, cp * sr, cp * cr],
-    ])
-
-
-def combine(bodies: Iterable[MassProperties]) -> MassProperties:
-    """Sum rigid bodies given in one frame (parallel-axis theorem about the joint COM).
-
-    Returns:
-        The combined body; a zero body (mass 0, COM at the origin) when the sum has no mass.
-    """
-    parts = list(bodies)
-    total = sum(p.mass for p in parts)
-    volume = sum(p.volume for p in parts)
-    if total <= 0:
-        return MassProperties(0.0, (0.0, 0.0, 0.0), _as_mat3(np.zeros((3, 3))), volume)
-    center = sum(p.mass * np.asarray(p.center_of_mass) for p in parts) / total
-    inertia = np.zeros((3, 3))
-    for p in parts:
-        offset = np.asarray(p.center_of_mass) - center
-        inertia += p.inertia_matrix() + p.mass * (offset @ offset * np.eye(3)
-                                                  - np.outer(offset, offset))
-    return MassProperties(total, _as_vec3(center), _as_mat3(inertia), volume)
-
-
-def link_mass_properties(parts: Iterable[tuple[MassProperties, Sequence[float], Sequence[float]]],
-                         mass: float | None = None) -> MassProperties:
-    """Combine the geometries of one link in the link frame.
-
-    Args:
-        parts: (properties at density 1 in the geometry frame, origin xyz, origin rpy) per
-            `<visual>` or `<collision>`.
-        mass: the declared link mass (kg); None keeps density 1 kg/m^3.
-
-    Returns:
-        Uniform density over all parts, scaled to `mass` when given.
-    """
-    body = combine(p.transformed(xyz, rpy) for p, xyz, rpy in parts)
-    return body.scaled_to_mass(mass) if mass is not None else body
+    """URDF's rotation from roll, pitch, yaw (rad) as a (3, 3) array, for array code:
+    `robotdesc.inertia.tensor.rpy_rotation` as numpy."""
+    return np.array(rpy_rotation(rpy))
 
 
 @dataclass(frozen=True)
@@ -163,17 +70,16 @@ class VolumeIntegrals:
         v, sx, sy, sz, xx, yy, zz, xy, yz, zx = self.values
         if not v > 0:
             raise ValueError(f"signed volume {v:g} m^3 is not positive")
-        c = np.array([sx, sy, sz]) / v
-        ixx = yy + zz - v * (c[1] ** 2 + c[2] ** 2)
-        iyy = zz + xx - v * (c[2] ** 2 + c[0] ** 2)
-        izz = xx + yy - v * (c[0] ** 2 + c[1] ** 2)
-        ixy = -(xy - v * c[0] * c[1])
-        iyz = -(yz - v * c[1] * c[2])
-        ixz = -(zx - v * c[2] * c[0])
+        cx, cy, cz = sx / v, sy / v, sz / v
+        ixx = yy + zz - v * (cy * cy + cz * cz)
+        iyy = zz + xx - v * (cz * cz + cx * cx)
+        izz = xx + yy - v * (cx * cx + cy * cy)
+        ixy = -(xy - v * cx * cy)
+        iyz = -(yz - v * cy * cz)
+        ixz = -(zx - v * cz * cx)
         inertia = ((ixx, ixy, ixz), (ixy, iyy, iyz), (ixz, iyz, izz))
-        center = c + np.asarray(self.reference)
-        return MassProperties(v, _as_vec3(center), tuple(tuple(float(x) for x in row)
-                                                         for row in inertia), v)
+        rx, ry, rz = self.reference
+        return MassProperties(v, (cx + rx, cy + ry, cz + rz), inertia, v)
 
 
 def volume_integrals(triangles: np.ndarray, chunk: int = CHUNK_TRIANGLES) -> VolumeIntegrals:
@@ -251,7 +157,3 @@ def _chunk_integrals(tri: np.ndarray) -> np.ndarray:
 def _as_vec3(values: np.ndarray | Sequence[float]) -> Vec3:
     a, b, c = (float(v) for v in values)
     return (a, b, c)
-
-
-def _as_mat3(matrix: np.ndarray) -> Mat3:
-    return (_as_vec3(matrix[0]), _as_vec3(matrix[1]), _as_vec3(matrix[2]))
