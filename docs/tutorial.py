@@ -70,7 +70,7 @@ for (code, name), count in Counter((d.code, d.name) for d in result.diagnostics)
     print(f"  {code} {name}: {count}")
 for diagnostic in [d for d in result.diagnostics if d.code == "I201"][:2]:
     print(f"\n{diagnostic.where.span}: {diagnostic.message}")
-result
+result  # noqa: B018 (displayed by the notebook)
 
 # %% [markdown]
 # ## 3. Inertia against the geometry
@@ -81,9 +81,9 @@ result
 # one.
 
 # %%
+from robotdesc.config import MeshSettings
 from robotdesc.inertia.table import inertia_table, render_table
 from robotdesc.mesh.context import MeshContext
-from robotdesc.config import MeshSettings
 
 meshes = MeshContext.for_file(robot, str(ENGINEER), MeshSettings())
 rows = inertia_table(robot, meshes)
@@ -122,7 +122,7 @@ view = robotdesc.show(result, {"left_flipper": 0.5, "shoulder": 0.4},
                       visible=("visual", "inertia", "findings"))
 page = view.save(OUT / "engineer.html")
 print(view, "->", page, f"({os.path.getsize(page) / 1e6:.1f} MB)")
-view
+view  # noqa: B018 (displayed by the notebook)
 
 # %% [markdown]
 # ## 4. Collision meshes
@@ -139,6 +139,7 @@ collision = robotdesc.generate_collision(
 from robotdesc.collision.report import render_table as collision_table
 
 print(collision_table(collision))
+collision  # noqa: B018 (a notebook shows the per-link table)
 
 # %% [markdown]
 # ## 5. Compare, in one report

@@ -22,7 +22,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 __version__ = "0.1.0"
 
-__all__ = ["__version__", "expand", "generate_collision", "lint", "load"]
+__all__ = ["__version__", "expand", "generate_collision", "lint", "load", "show"]
 
 
 def generate_collision(robot: "Robot", method: str = "decimate", **options):

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from robotdesc.mesh import summary as summary_module
+from robotdesc.mesh import load as load_module
 from robotdesc.mesh.cache import MeshCache, default_cache_dir, summary_from_json, summary_to_json
 from robotdesc.mesh.summary import analyze_mesh_file
 from robotdesc.mesh.validate import MeshError, MeshErrorKind
@@ -47,7 +47,7 @@ def test_warm_run_does_no_mesh_work(tmp_path, mesh_file, monkeypatch):
     def fail(*args, **kwargs):
         raise AssertionError("the mesh was loaded again")
 
-    monkeypatch.setattr(summary_module, "load_mesh", fail)
+    monkeypatch.setattr(load_module, "load_mesh", fail)
     monkeypatch.setattr("robotdesc.mesh.cache._hash_file", fail)  # stat index hit: no hashing
     assert analyze_mesh_file(mesh_file, cache=cache) == cold
 
@@ -83,7 +83,7 @@ def test_mesh_errors_are_cached(tmp_path, monkeypatch):
     cache = MeshCache(tmp_path / "cache")
     with pytest.raises(MeshError):
         analyze_mesh_file(path, cache=cache)
-    monkeypatch.setattr(summary_module, "load_mesh", lambda *a, **k: pytest.fail("reloaded"))
+    monkeypatch.setattr(load_module, "load_mesh", lambda *a, **k: pytest.fail("reloaded"))
     with pytest.raises(MeshError) as caught:
         analyze_mesh_file(path, cache=cache)
     assert caught.value.kind is MeshErrorKind.LFS_POINTER and "pointer.stl" in str(caught.value)

@@ -10,13 +10,13 @@ import sys
 from pathlib import Path
 
 import pytest
+from view.browser import drawn_pixels, dump_dom, require_chromium, screenshot
+from view.robots import write_demo_package
 
 import robotdesc
 from robotdesc.report import html_plots
 from robotdesc.report.html import _merge_alike, render_html_report
 from robotdesc.report.html_data import collect_report
-from view.browser import drawn_pixels, dump_dom, require_chromium, screenshot
-from view.robots import write_demo_package
 
 REPO = Path(__file__).resolve().parents[2]
 ENGINEER = REPO / "robots/engineer_description/urdf/engineer.urdf.xacro"
@@ -29,7 +29,7 @@ def report(tmp_path_factory: pytest.TempPathFactory) -> str:
 
 
 def _section(page: str, key: str) -> str:
-    match = re.search(rf'<section id="{key}">(.*?)</section>', page, re.S)
+    match = re.search(rf'<section id="{key}">(.*?)</section>', page, re.DOTALL)
     assert match, f"no {key} section"
     return match.group(1)
 
@@ -37,7 +37,7 @@ def _section(page: str, key: str) -> str:
 def test_findings_are_grouped_by_link(report: str) -> None:
     findings = _section(report, "findings")
     groups = dict(re.findall(r'<details open data-link="([^"]+)">(.*?)</details>', findings,
-                             re.S))
+                             re.DOTALL))
     assert set(groups) == {"base", "finger_left", "finger_right"}
     assert "I201" in groups["finger_left"] and "inertia-differs-from-geometry" in findings
     assert "missing.stl" in groups["finger_right"]
@@ -87,7 +87,7 @@ def test_identical_rows_are_merged_for_the_plots() -> None:
 
 def run(*args: str) -> subprocess.CompletedProcess:
     path = os.pathsep.join(filter(None, [str(REPO / "src"), os.environ.get("PYTHONPATH")]))
-    return subprocess.run([sys.executable, "-m", "robotdesc", *args], capture_output=True,
+    return subprocess.run([sys.executable, "-m", "robotdesc", *args], capture_output=True, check=False,
                           text=True, env={**os.environ, "PYTHONPATH": path}, timeout=600)
 
 
@@ -133,3 +133,29 @@ def test_report_in_the_browser(tmp_path: Path, target: str) -> None:
         assert re.search(rf'<li class="rd-finding" data-link="{link}"', dom)  # the viewer
         assert f'<details data-link="{link}"' in dom or \
             f'<details open="" data-link="{link}"' in dom  # the findings section
+
+
+def test_plots_of_nothing_are_none_and_plots_are_plain_svg() -> None:
+    pytest.importorskip("matplotlib")
+    assert html_plots.moments_plot([("a", (0.0, 1.0, 1.0), (1.0, 1.0, 1.0))]) is None
+    assert html_plots.faces_plot([("a", 0, 0)]) is None
+    svg = html_plots.faces_plot([("arm", 1200, 12), ("base", 12, 0)], total=5)
+    assert svg.startswith("<svg") and svg.rstrip().endswith("</svg>")
+    assert "Triangles per link (5 links with geometry)" in svg and ">arm<" in svg
+    assert "<metadata>" not in svg and "xlink:href=\"http" not in svg
+
+
+def test_collision_result_as_html() -> None:
+    from robotdesc.collision import CollisionOptions, CollisionResult, LinkOutcome, LinkReport
+    from robotdesc.collision.result import Finding
+    from robotdesc.model.elements import Robot
+    from robotdesc.report.html import collision_result_html
+
+    report = LinkReport("head <link>", "hull", "warning", faces_before=1000, faces_after=100,
+                        hulls=1, volume_ratio=1.5, forward_max=0.01, backward_max=0.02,
+                        diagonal=0.5, findings=(Finding("over-limit", "warning", "too many"),))
+    result = CollisionResult(Robot("r"), (LinkOutcome(report),), CollisionOptions(), 1.0)
+    html = collision_result_html(result)
+    assert "<td>head &lt;link&gt;</td><td>hull</td><td>warning</td>" in html
+    assert "<td class=num>4.00%</td>" in html and "warning: too many" in html
+    assert result._repr_html_() == html  # Jupyter shows the same table

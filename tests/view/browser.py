@@ -36,7 +36,7 @@ def _run(page: Path, *extra: str) -> subprocess.CompletedProcess:
     with tempfile.TemporaryDirectory(prefix="robotdesc-chromium-") as profile:
         return subprocess.run([require_chromium(), *FLAGS, NO_NETWORK,
                                f"--user-data-dir={profile}", *extra, page.resolve().as_uri()],
-                              capture_output=True, text=True, timeout=180)
+                              capture_output=True, check=False, text=True, timeout=180)
 
 
 def screenshot(page: Path, png: Path, size: tuple[int, int] = (1200, 800)) -> np.ndarray:

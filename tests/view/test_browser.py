@@ -85,3 +85,30 @@ def test_engineer_view_in_the_browser(tmp_path: Path) -> None:
     assert 'data-link="head_link"' in dom and 'data-link="left_flipper_link"' in dom
     for name in list(flagged)[:20]:
         assert re.search(rf'<li class="rd-finding" data-link="{re.escape(name)}"', dom)
+
+
+PICK_SCRIPT = """<script>
+var viewer = document.getElementById("robotdesc-view").robotdescViewer;
+var middle = viewer.pick(viewer.canvas.clientWidth / 2, viewer.canvas.clientHeight / 2);
+viewer.select(middle);
+document.body.setAttribute("data-picked", middle || "");
+document.body.setAttribute("data-corner", viewer.pick(3, 3) || "");
+</script>
+</body>"""
+
+
+@pytest.mark.slow
+def test_picking_a_link_in_the_canvas_selects_it(tmp_path: Path) -> None:
+    require_chromium()
+    page = Path(show(str(write_demo_package(tmp_path)), visible=("visual", "findings"))
+                .save(tmp_path / "pick.html"))
+    page.write_text(page.read_text(encoding="utf-8").replace("</body>", PICK_SCRIPT),
+                    encoding="utf-8")
+    dom = dump_dom(page, (1000, 700))
+    picked = re.search(r'<body data-picked="([^"]*)" data-corner="([^"]*)"', dom)
+    assert picked, "the pick script did not run"
+    assert picked.group(1) in ("base", "arm") and picked.group(2) == ""
+    assert f'data-selected="{picked.group(1)}"' in dom
+    item = re.search(rf'<li[^>]*data-link="{picked.group(1)}"[^>]*>', dom).group(0)
+    assert "rd-selected" in item
+    assert 'class="rd-filter"' in dom

@@ -18,7 +18,7 @@ REPO = Path(__file__).resolve().parents[2]
 
 def run(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
     path = os.pathsep.join(filter(None, [str(REPO / "src"), os.environ.get("PYTHONPATH")]))
-    return subprocess.run([sys.executable, "-m", "robotdesc", *args], capture_output=True,
+    return subprocess.run([sys.executable, "-m", "robotdesc", *args], capture_output=True, check=False,
                           text=True, cwd=cwd, env={**os.environ, "PYTHONPATH": path},
                           timeout=300)
 
@@ -30,7 +30,7 @@ def urdf(tmp_path: Path) -> Path:
 
 def _document(page: Path) -> dict:
     text = page.read_text(encoding="utf-8")
-    return json.loads(re.search(r'id="robotdesc-view-data">(.*?)</script>', text, re.S).group(1))
+    return json.loads(re.search(r'id="robotdesc-view-data">(.*?)</script>', text, re.DOTALL).group(1))
 
 
 def test_view_writes_the_page(urdf: Path, tmp_path: Path) -> None:

@@ -27,7 +27,7 @@ def urdf(tmp_path: Path) -> Path:
 
 def _document_in(page: str) -> dict:
     match = re.search(r'<script type="application/json" id="robotdesc-view-data">(.*?)</script>',
-                      page, re.S)
+                      page, re.DOTALL)
     assert match, "the page embeds the scene document"
     return json.loads(match.group(1))
 

@@ -6,11 +6,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from support import example_robot_data_dir
 
 import robotdesc
 from robotdesc.errors import UsageError
 from robotdesc.view.scene import build_scene
-from support import example_robot_data_dir
 
 from .robots import write_demo_package
 

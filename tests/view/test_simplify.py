@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import numpy as np
-
 from mesh.builders import box_triangles
+
 from robotdesc.view.shapes import sphere_mesh
 from robotdesc.view.simplify import cluster, drop_degenerate, reduce_faces, weld
 

@@ -262,20 +262,21 @@ def gripper_part_one(g: dict[str, float]) -> Manifold:
 
 
 def gripper_part_two(g: dict[str, float]) -> Manifold:
-    """part_two_<side>: the parallel bar under part_one (closes the loop in reality)."""
-    return _bar(g["gripper_bar_length"], 0.0045, 0.0025, 0.006, False)
+    """part_two_<side>: the parallel bar beside part_one. In reality it closes the loop at the
+    jaw; in the tree model it ends short of the jaw (the mimic joints keep the loop)."""
+    return _bar(g["gripper_parallel_bar_length"], 0.0045, 0.0025, 0.006, False)
 
 
 def gripper_part_three(g: dict[str, float]) -> Manifold:
-    """part_three_<side>: the jaw, hinged on both bars; its +z points at the other jaw."""
+    """part_three_<side>: the jaw, hinged on part_one's tip and spanning both bars; its +z
+    points at the other jaw."""
     jl, dy = g["gripper_jaw_length"], 2 * g["gripper_bar_y"]
     plate = extrude_xz(stadium([(0.0, 0.0, 0.008), (0.0, jl, 0.006)], SEG_MID), -dy - 0.008, 0.008)
     grooves = union([box((sx * 0.0045 if sx > 0 else -1, -1, jl - 0.004 - 0.005 * k),
                          (1 if sx > 0 else sx * 0.0045, 1, jl - 0.0025 - 0.005 * k))
                      for k in range(4) for sx in (-1, 1)])
     inner_cut = box((-1, -0.0055, -0.012), (1, 0.0055, 0.0095))
-    lower_cut = box((-1, -dy - 0.0055, -0.012), (1, -dy + 0.0055, 0.0095))
-    jaw = plate - grooves - inner_cut - lower_cut
+    jaw = plate - grooves - inner_cut
     pins = union([cyl_y(0.0022, -dy - 0.009, 0.009, 0.0, 0.0, SEG_SMALL)])
     pad = rounded_box((-0.0035, -dy - 0.006, jl - 0.001), (0.0035, 0.006, jl + 0.006), 0.0025, SEG_SMALL)
     return union([jaw, pins, pad])

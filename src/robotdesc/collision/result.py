@@ -165,3 +165,9 @@ class CollisionResult:
                 "options": as_dict(self.options), "jobs": self.jobs,
                 "links": [o.report.to_dict() for o in self.outcomes],
                 "totals": self.totals(), "failed": self.failed}
+
+    def _repr_html_(self) -> str:
+        """The per-link table as HTML (Jupyter's display)."""
+        from robotdesc.report.html import collision_result_html
+
+        return collision_result_html(self)

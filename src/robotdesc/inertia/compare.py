@@ -2,6 +2,7 @@
 likely cause of a mismatch when the numbers say so.
 
 Units: kg, m, kg*m^2. Both tensors are about the centre of mass, in link-frame axes.
+Plain Python (`robotdesc.inertia.tensor`): it runs on every lint with mesh rules.
 """
 
 from __future__ import annotations
@@ -10,9 +11,8 @@ import itertools
 import math
 from dataclasses import dataclass
 
-import numpy as np
-
-from robotdesc.mesh.mass import MassProperties, rpy_matrix
+from robotdesc.inertia.tensor import Mat3, Vec3, difference, frobenius, principal_moments, rotated
+from robotdesc.mesh.properties import MassProperties
 from robotdesc.model.elements import Inertial
 
 #: Powers of ten that a unit slip of the tensor produces, and the slip that gives each.
@@ -45,11 +45,11 @@ class InertiaComparison:
         cause: the likely cause of the mismatch, when the numbers point to one.
     """
 
-    declared: np.ndarray
-    derived: np.ndarray
-    declared_moments: tuple[float, float, float]
-    derived_moments: tuple[float, float, float]
-    moment_errors: tuple[float, float, float]
+    declared: Mat3
+    derived: Mat3
+    declared_moments: Vec3
+    derived_moments: Vec3
+    moment_errors: Vec3
     tensor_error: float
     cause: str | None = None
 
@@ -58,10 +58,9 @@ class InertiaComparison:
         return max(self.moment_errors) > tolerance or self.tensor_error > tolerance
 
 
-def declared_tensor(inertial: Inertial) -> np.ndarray:
+def declared_tensor(inertial: Inertial) -> Mat3:
     """The declared tensor rotated from the `<inertial><origin rpy>` frame into link axes."""
-    rotation = rpy_matrix(inertial.origin.rpy)
-    return rotation @ np.array(inertial.inertia.matrix(), dtype=float) @ rotation.T
+    return rotated(inertial.inertia.matrix(), inertial.origin.rpy)
 
 
 def compare_inertia(inertial: Inertial, geometry: MassProperties,
@@ -74,12 +73,12 @@ def compare_inertia(inertial: Inertial, geometry: MassProperties,
         tolerance: the relative tolerance the cause analysis uses.
     """
     declared = declared_tensor(inertial)
-    derived = geometry.scaled_to_mass(inertial.mass).inertia_matrix()
-    dm = _moments(declared)
-    gm = _moments(derived)
+    derived = geometry.scaled_to_mass(inertial.mass).inertia
+    dm = principal_moments(declared)
+    gm = principal_moments(derived)
     errors = tuple(abs(d - g) / g if g > 0 else math.inf for d, g in zip(dm, gm))
-    norm = float(np.linalg.norm(derived))
-    tensor_error = float(np.linalg.norm(declared - derived)) / norm if norm > 0 else math.inf
+    norm = frobenius(derived)
+    tensor_error = frobenius(difference(declared, derived)) / norm if norm > 0 else math.inf
     result = InertiaComparison(declared, derived, dm, gm, errors, tensor_error)  # type: ignore[arg-type]
     if not result.mismatch(tolerance):
         return result
@@ -87,16 +86,15 @@ def compare_inertia(inertial: Inertial, geometry: MassProperties,
                              likely_cause(declared, derived, dm, gm, tolerance))
 
 
-def likely_cause(declared: np.ndarray, derived: np.ndarray, declared_moments, derived_moments,
+def likely_cause(declared: Mat3, derived: Mat3, declared_moments: Vec3, derived_moments: Vec3,
                  tolerance: float) -> str | None:
     """Name the slip that turns `derived` into `declared`, if one does (see UNIT_SLIPS)."""
-    if not np.any(declared):
+    if not any(v for row in declared for v in row):
         return "the declared tensor is zero (a point mass)"
     slip = unit_slip(declared_moments, derived_moments)
     if slip is not None:
         return UNIT_SLIPS[slip]
-    norm = float(np.linalg.norm(derived))
-    flipped = sign_flip(declared, derived, tolerance * norm)
+    flipped = sign_flip(declared, derived, tolerance * frobenius(derived))
     if flipped:
         return (f"the sign of {', '.join(flipped)} is swapped: URDF's products are "
                 "-integral(x*y dm), while CAD tools (SolidWorks, Onshape, Fusion) list "
@@ -108,7 +106,7 @@ def likely_cause(declared: np.ndarray, derived: np.ndarray, declared_moments, de
     return None
 
 
-def unit_slip(declared_moments, derived_moments) -> int | None:
+def unit_slip(declared_moments: Vec3, derived_moments: Vec3) -> int | None:
     """The power of ten k with declared ~ 10^k * derived for all three moments, if it is a
     known slip."""
     if min(derived_moments) <= 0 or min(declared_moments) <= 0:
@@ -120,32 +118,22 @@ def unit_slip(declared_moments, derived_moments) -> int | None:
     return None
 
 
-def sign_flip(declared: np.ndarray, derived: np.ndarray, slack: float) -> tuple[str, ...]:
+def sign_flip(declared: Mat3, derived: Mat3, slack: float) -> tuple[str, ...]:
     """The products of inertia whose sign, flipped, makes `declared` match `derived`."""
     names = {(0, 1): "ixy", (0, 2): "ixz", (1, 2): "iyz"}
-    best: tuple[float, tuple[str, ...]] = (float(np.linalg.norm(declared - derived)), ())
+    best: tuple[float, tuple[str, ...]] = (frobenius(difference(declared, derived)), ())
     for count in (1, 2, 3):
         for chosen in itertools.combinations(names, count):
-            candidate = declared.copy()
+            candidate = [list(row) for row in declared]
             for i, j in chosen:
-                candidate[i, j] = candidate[j, i] = -candidate[i, j]
-            error = float(np.linalg.norm(candidate - derived))
+                candidate[i][j] = candidate[j][i] = -candidate[i][j]
+            error = frobenius(difference(candidate, derived))
             if error < best[0]:
                 best = (error, tuple(names[c] for c in chosen))
     if best[1] and best[0] <= slack:
-        significant = [n for n in best[1] if abs(_product(declared, n)) > 0]
-        return tuple(significant)
+        indices = {name: index for index, name in names.items()}
+        return tuple(n for n in best[1] if abs(declared[indices[n][0]][indices[n][1]]) > 0)
     return ()
-
-
-def _product(matrix: np.ndarray, name: str) -> float:
-    index = {"ixy": (0, 1), "ixz": (0, 2), "iyz": (1, 2)}[name]
-    return float(matrix[index])
-
-
-def _moments(matrix: np.ndarray) -> tuple[float, float, float]:
-    values = np.linalg.eigvalsh(matrix)
-    return (float(values[0]), float(values[1]), float(values[2]))
 
 
 def mirror_partner(name: str, names: set[str]) -> str | None:

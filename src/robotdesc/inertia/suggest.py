@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from robotdesc.mesh.mass import MassProperties
+from robotdesc.mesh.properties import MassProperties
 from robotdesc.model.elements import Link
 from robotdesc.source import Span
 

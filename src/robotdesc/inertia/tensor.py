@@ -75,10 +75,10 @@ def rotated(matrix: Sequence[Sequence[float]], rpy: Sequence[float]) -> Mat3:
 
 def conjugated(matrix: Sequence[Sequence[float]], rotation: Sequence[Sequence[float]]) -> Mat3:
     """R M R^T: a tensor given in a rotated frame, expressed in the parent frame."""
-    r = rotation
-    rm = [[sum(r[i][k] * matrix[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
-    out = [[sum(rm[i][k] * r[j][k] for k in range(3)) for j in range(3)] for i in range(3)]
-    return _mat3(out)
+    (m00, m01, m02), (m10, m11, m12), (m20, m21, m22) = matrix
+    rm = [(r0 * m00 + r1 * m10 + r2 * m20, r0 * m01 + r1 * m11 + r2 * m21,
+           r0 * m02 + r1 * m12 + r2 * m22) for r0, r1, r2 in rotation]  # rows of R M
+    return _mat3([[a[0] * r[0] + a[1] * r[1] + a[2] * r[2] for r in rotation] for a in rm])
 
 
 def rpy_rotation(rpy: Sequence[float]) -> Mat3:
@@ -101,8 +101,8 @@ def rotate(rotation: Sequence[Sequence[float]], vector: Sequence[float]) -> Vec3
 
 def compose(first: Sequence[Sequence[float]], second: Sequence[Sequence[float]]) -> Mat3:
     """The matrix product first @ second."""
-    return _mat3([[sum(first[i][k] * second[k][j] for k in range(3)) for j in range(3)]
-                  for i in range(3)])
+    columns = list(zip(*second))
+    return _mat3([[a[0] * c[0] + a[1] * c[1] + a[2] * c[2] for c in columns] for a in first])
 
 
 def add(a: Sequence[float], b: Sequence[float]) -> Vec3:

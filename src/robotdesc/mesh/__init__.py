@@ -1,28 +1,43 @@
 """Meshes: resolve a `<mesh>` reference, load and validate the file, compute mass properties
 and health, and cache the results by content hash. See docs/meshes.md.
 
-Heavy readers (pycollada, trimesh, scipy) are imported only when a file needs them.
+The names below are imported on first use (PEP 562), so that `import robotdesc.mesh.cache`
+or `robotdesc.mesh.context` does not pull numpy in: a warm lint, served from the cache,
+never imports numpy, trimesh or scipy. Heavy readers are imported only when a file needs them.
 """
 
-from robotdesc.mesh.cache import MeshCache, default_cache_dir
-from robotdesc.mesh.health import MeshHealth, mesh_health
-from robotdesc.mesh.load import LoadedMesh, load_mesh
-from robotdesc.mesh.mass import (
-    MassProperties,
-    combine,
-    link_mass_properties,
-    rpy_matrix,
-    volume_integrals,
-)
-from robotdesc.mesh.primitives import primitive_properties
-from robotdesc.mesh.resolve import MeshResolution, ResolveProblem, ResolveProblemKind, resolve_mesh
-from robotdesc.mesh.summary import MassMethod, MeshSummary, analyze_mesh_file, summarize
-from robotdesc.mesh.validate import MeshError, MeshErrorKind, MeshLimits
+from __future__ import annotations
 
-__all__ = [
-    "LoadedMesh", "MassMethod", "MassProperties", "MeshCache", "MeshError", "MeshErrorKind",
-    "MeshHealth", "MeshLimits", "MeshResolution", "MeshSummary", "ResolveProblem",
-    "ResolveProblemKind", "analyze_mesh_file", "combine", "default_cache_dir",
-    "link_mass_properties", "load_mesh", "mesh_health", "primitive_properties",
-    "resolve_mesh", "rpy_matrix", "summarize", "volume_integrals",
-]
+import importlib
+from typing import Any
+
+#: Public name -> the submodule defining it.
+_EXPORTS = {
+    "MeshCache": "cache", "default_cache_dir": "cache",
+    "MeshHealth": "records", "MassMethod": "records", "MeshSummary": "records",
+    "mesh_health": "health",
+    "LoadedMesh": "load", "load_mesh": "load",
+    "MassProperties": "properties", "combine": "properties",
+    "link_mass_properties": "properties",
+    "rpy_matrix": "mass", "volume_integrals": "mass",
+    "primitive_properties": "primitives",
+    "MeshResolution": "resolve", "ResolveProblem": "resolve", "ResolveProblemKind": "resolve",
+    "resolve_mesh": "resolve",
+    "analyze_mesh_file": "analyze", "summarize": "summary",
+    "MeshError": "errors", "MeshErrorKind": "errors", "MeshLimits": "errors",
+}
+
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name: str) -> Any:
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{module}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_EXPORTS))

@@ -9,6 +9,8 @@ off), else `$XDG_CACHE_HOME/robotdesc`, else `~/.cache/robotdesc`. Layout:
 The stat index lets a warm run skip reading and hashing unchanged files. Writes are atomic
 (a temporary file renamed into place); an unreadable or corrupt entry is ignored (and
 rewritten), never an error. Bump `CACHE_VERSION` whenever loading or summarizing changes.
+
+Plain Python (json, hashlib, no numpy): a warm run reads summaries without importing numpy.
 """
 
 from __future__ import annotations
@@ -22,10 +24,9 @@ import tempfile
 from pathlib import Path
 from typing import Any, Mapping, Sequence
 
-from robotdesc.mesh.health import MeshHealth
-from robotdesc.mesh.mass import MassProperties
-from robotdesc.mesh.summary import MassMethod, MeshSummary
-from robotdesc.mesh.validate import MeshError, MeshErrorKind
+from robotdesc.mesh.errors import MeshError, MeshErrorKind
+from robotdesc.mesh.properties import MassProperties
+from robotdesc.mesh.records import MassMethod, MeshHealth, MeshSummary
 
 log = logging.getLogger(__name__)
 
@@ -55,8 +56,9 @@ class MeshCache:
 
     def __init__(self, directory: str | os.PathLike[str]) -> None:
         self.directory = Path(directory)
-        self._entries = self.directory / f"meshes-v{CACHE_VERSION}"
-        self._stats = self.directory / f"stat-v{CACHE_VERSION}"
+        # plain strings: these paths are built for every mesh of every warm run
+        self._entries = os.path.join(self.directory, f"meshes-v{CACHE_VERSION}")
+        self._stats = os.path.join(self.directory, f"stat-v{CACHE_VERSION}")
         self._write_failed = False
 
     def key_for(self, path: str, scale: Sequence[float]) -> str | None:
@@ -76,7 +78,9 @@ class MeshCache:
         if not stat.S_ISREG(info.st_mode):
             return None
         stamp = [info.st_size, info.st_mtime_ns, info.st_ctime_ns, info.st_ino]
-        path_key = hashlib.sha256(os.path.realpath(path).encode()).hexdigest()
+        # abspath, not realpath: the stamp (with the inode) identifies the file, and
+        # resolving symlinks would cost a stat per path component on every warm run.
+        path_key = hashlib.sha256(os.path.abspath(path).encode()).hexdigest()
         index_file = _shard(self._stats, path_key)
         known = _read_json(index_file)
         if isinstance(known, dict) and known.get("stamp") == stamp \
@@ -112,10 +116,11 @@ class MeshCache:
         self._write(_shard(self._entries, key),
                     {"error": {"kind": error.kind.value, "detail": error.detail}})
 
-    def _write(self, target: Path, data: Any) -> None:
+    def _write(self, target: str, data: Any) -> None:
         try:
-            target.parent.mkdir(parents=True, exist_ok=True)
-            handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=".tmp-",
+            folder = os.path.dirname(target)
+            os.makedirs(folder, exist_ok=True)
+            handle, temporary = tempfile.mkstemp(dir=folder, prefix=".tmp-",
                                                  suffix=".json")
             try:
                 with os.fdopen(handle, "w", encoding="utf-8") as stream:
@@ -175,14 +180,14 @@ def _vec3(values: Sequence[Any]) -> tuple[float, float, float]:
     return (x, y, z)
 
 
-def _shard(root: Path, digest: str) -> Path:
-    return root / digest[:2] / f"{digest}.json"
+def _shard(root: str, digest: str) -> str:
+    return os.path.join(root, digest[:2], f"{digest}.json")
 
 
-def _read_json(path: Path) -> Any:
+def _read_json(path: str) -> Any:
     try:
-        with open(path, encoding="utf-8") as stream:
-            return json.load(stream)
+        with open(path, "rb") as stream:
+            return json.loads(stream.read())
     except FileNotFoundError:
         return None
     except (OSError, ValueError) as error:

@@ -5,6 +5,10 @@ The lint driver builds one `MeshContext` per linted file, only when a selected r
 meshes. Nothing is read until a rule asks; every answer is remembered for the other rules.
 Package names go through the same resolver chain as the xacro expansion, and an unknown
 package is reported, never looked up elsewhere.
+
+Plain Python: when every mesh summary comes from the cache, nothing here imports numpy
+(the link combination is `robotdesc.mesh.properties`); a cache miss loads the file through
+`robotdesc.mesh.analyze`, which imports the readers then.
 """
 
 from __future__ import annotations
@@ -15,12 +19,13 @@ from dataclasses import dataclass
 from typing import Callable, Iterator
 
 from robotdesc.config import MeshSettings
+from robotdesc.mesh.analyze import analyze_mesh_file
 from robotdesc.mesh.cache import MeshCache, default_cache_dir
-from robotdesc.mesh.mass import MassProperties, Vec3, combine, rpy_matrix
+from robotdesc.mesh.errors import DEFAULT_LIMITS, MeshError, MeshLimits
 from robotdesc.mesh.primitives import primitive_properties
+from robotdesc.mesh.properties import MassProperties, Vec3, combine, moved_bounds
+from robotdesc.mesh.records import MassMethod, MeshSummary
 from robotdesc.mesh.resolve import MeshResolution, resolve_mesh
-from robotdesc.mesh.summary import MassMethod, MeshSummary, analyze_mesh_file
-from robotdesc.mesh.validate import DEFAULT_LIMITS, MeshError, MeshLimits
 from robotdesc.model.elements import Collision, Link, MeshRef, Robot, Visual
 
 log = logging.getLogger(__name__)
@@ -97,12 +102,20 @@ class MeshContext:
                  cache: MeshCache | None = None, limits: MeshLimits = DEFAULT_LIMITS) -> None:
         self.robot = robot
         self.settings = settings
-        self._find_package = find_package
+        self._package_lookup = find_package
         self._cache = cache
         self._limits = limits
         self._lookups: dict[tuple, MeshLookup] = {}
         self._links: dict[tuple[str, str | None], LinkGeometry] = {}
         self._roots: dict[str, str | None] = {}
+        self._base_dirs: dict[str, str] = {}
+        self._meshes: tuple | None = None
+        self._by_ref: dict[int, tuple[MeshRef, MeshLookup]] = {}  # every rule asks again
+
+    def find_package(self, name: str) -> str | None:
+        """The root directory of package `name` through the lint's resolver chain (the
+        same one the expansion used), or None when the package is unknown."""
+        return self._package_lookup(name)
 
     @classmethod
     def for_file(cls, robot: Robot, target: str, settings: MeshSettings,
@@ -125,17 +138,21 @@ class MeshContext:
 
     def lookup(self, ref: MeshRef) -> MeshLookup:
         """Resolve and summarize one `<mesh>` (remembered per file, base and scale)."""
+        seen = self._by_ref.get(id(ref))
+        if seen is not None and seen[0] is ref:
+            return seen[1]
         base_dir = self._base_dir(ref)
         key = (ref.filename, base_dir, tuple(ref.scale))
         found = self._lookups.get(key)
         if found is None:
             found = self._lookup(ref, base_dir)
             self._lookups[key] = found
+        self._by_ref[id(ref)] = (ref, found)  # holding `ref` keeps its id unique
         return found
 
     def _lookup(self, ref: MeshRef, base_dir: str) -> MeshLookup:
         resolution = resolve_mesh(ref.filename, base_dir=base_dir,
-                                  find_package=self._find_package,
+                                  find_package=self._package_lookup,
                                   allow_absolute=self.settings.allow_absolute_paths,
                                   relative_root=self._package_root(base_dir))
         if not resolution.ok:
@@ -150,9 +167,14 @@ class MeshContext:
         """The folder a relative filename is taken from: that of the file holding the
         `<mesh>` element (a xacro file for expanded input), else the robot's source."""
         written_in = ref.where.span.path if ref.where else ""
-        if written_in and os.path.isfile(written_in):
-            return os.path.dirname(os.path.abspath(written_in))
-        return os.path.dirname(os.path.abspath(self.robot.source or "."))
+        found = self._base_dirs.get(written_in)
+        if found is None:
+            if written_in and os.path.isfile(written_in):
+                found = os.path.dirname(os.path.abspath(written_in))
+            else:
+                found = os.path.dirname(os.path.abspath(self.robot.source or "."))
+            self._base_dirs[written_in] = found
+        return found
 
     def _package_root(self, directory: str) -> str | None:
         if directory not in self._roots:
@@ -166,11 +188,13 @@ class MeshContext:
 
     def meshes(self) -> Iterator[tuple[Link, str, int, Visual | Collision, MeshRef]]:
         """Every `<mesh>`: (link, "visual" | "collision", index, element, reference)."""
-        for link in self.robot.links:
-            for kind, shapes in (("visual", link.visuals), ("collision", link.collisions)):
-                for index, shape in enumerate(shapes):
-                    if isinstance(shape.geometry, MeshRef):
-                        yield link, kind, index, shape, shape.geometry
+        if self._meshes is None:
+            self._meshes = tuple(
+                (link, kind, index, shape, shape.geometry)
+                for link in self.robot.links
+                for kind, shapes in (("visual", link.visuals), ("collision", link.collisions))
+                for index, shape in enumerate(shapes) if isinstance(shape.geometry, MeshRef))
+        return iter(self._meshes)
 
     # --- one link -----------------------------------------------------------------------
 
@@ -198,7 +222,7 @@ class MeshContext:
             notes.append(f"no {wanted} geometry: measured the {other} geometry")
         if not shapes:
             return LinkGeometry(link.name, "", None, None, notes=("no geometry",))
-        parts, corners, unmeasured, estimated = [], [], [], False
+        parts, boxes, unmeasured, estimated = [], [], [], False
         for shape in shapes:
             measured = self._shape_properties(shape)
             if isinstance(measured, str):
@@ -206,13 +230,12 @@ class MeshContext:
                 continue
             props, box, hull = measured
             estimated = estimated or hull
-            rotation = rpy_matrix(shape.origin.rpy)
             parts.append(props.transformed(shape.origin.xyz, shape.origin.rpy))
-            corners.extend(_box_corners(box, rotation, shape.origin.xyz))
+            boxes.append(moved_bounds(box, shape.origin.xyz, shape.origin.rpy))
         if not parts:
             return LinkGeometry(link.name, source, None, None, tuple(unmeasured), notes=tuple(notes))
-        low = tuple(min(c[i] for c in corners) for i in range(3))
-        high = tuple(max(c[i] for c in corners) for i in range(3))
+        low = tuple(min(b[0][i] for b in boxes) for i in range(3))
+        high = tuple(max(b[1][i] for b in boxes) for i in range(3))
         if estimated:
             notes.append("part of it is a convex-hull estimate (a mesh is not a closed surface)")
         return LinkGeometry(link.name, source, combine(parts), (low, high),  # type: ignore[arg-type]
@@ -259,14 +282,3 @@ def _primitive_half_extent(geometry) -> Vec3:
     r = geometry.radius
     half_length = geometry.length / 2 + (r if type(geometry).__name__ == "Capsule" else 0.0)
     return (r, r, half_length)
-
-
-def _box_corners(box: tuple[Vec3, Vec3], rotation, xyz) -> list[Vec3]:
-    """The eight corners of a local box, in the parent frame."""
-    import numpy as np
-
-    low, high = box
-    points = np.array([[x, y, z] for x in (low[0], high[0]) for y in (low[1], high[1])
-                       for z in (low[2], high[2])])
-    moved = points @ np.asarray(rotation).T + np.asarray(xyz, dtype=float)
-    return [tuple(float(v) for v in row) for row in moved]  # type: ignore[misc]

@@ -12,52 +12,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from robotdesc.mesh.mass import bounds
+from robotdesc.mesh.records import MeshHealth
+
+__all__ = ["MeshHealth", "Topology", "hole_caps", "merge_vertices", "mesh_health", "topology"]
 
 #: A face whose area is below this fraction of the squared bounding-box diagonal is degenerate.
 DEGENERATE_AREA_FRACTION = 1e-14
-
-
-@dataclass(frozen=True)
-class MeshHealth:
-    """What the edge counts say about a surface.
-
-    Attributes:
-        triangles: number of faces in the file (after triangulation).
-        vertices: number of distinct vertex positions.
-        degenerate_faces: faces with a repeated vertex or (almost) zero area.
-        boundary_edges: edges used by one face only (holes: the mesh is open).
-        nonmanifold_edges: edges used by more than two faces.
-        misoriented_edges: edges shared by two faces that run them the same way (the
-            winding flips there).
-        unbalanced_edges: edges run more often one way than the other; zero exactly when
-            the surface is a closed, oriented cycle whose enclosed volume is well defined
-            (which a union of closed bodies touching along edges also is).
-        hole_loops: connected groups of boundary edges (about the number of holes).
-    """
-
-    triangles: int
-    vertices: int
-    degenerate_faces: int
-    boundary_edges: int
-    nonmanifold_edges: int
-    misoriented_edges: int
-    unbalanced_edges: int = 0
-    hole_loops: int = 0
-
-    @property
-    def watertight(self) -> bool:
-        """Every edge is shared by exactly two faces (a closed two-manifold, as MeshLab asks)."""
-        return self.boundary_edges == 0 and self.nonmanifold_edges == 0
-
-    @property
-    def consistent_winding(self) -> bool:
-        """Neighbouring faces agree on orientation along every shared edge."""
-        return self.misoriented_edges == 0
-
-    @property
-    def encloses_volume(self) -> bool:
-        """The signed volume integral is exact (up to its overall sign) for this surface."""
-        return self.unbalanced_edges == 0
 
 
 @dataclass(frozen=True, eq=False)

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 
-from robotdesc.mesh.mass import MassProperties
+from robotdesc.mesh.properties import MassProperties
 from robotdesc.model.elements import Box, Capsule, Cylinder, Sphere
 
 Primitive = Box | Cylinder | Sphere | Capsule

@@ -88,6 +88,8 @@ class MassProperties:
             xyz: translation of the geometry frame in the parent frame (m).
             rpy: URDF roll-pitch-yaw of the geometry frame (rad): R = Rz(y) Ry(p) Rx(r).
         """
+        if not any(xyz) and not any(rpy):
+            return self  # the frames coincide (the usual `<origin>`)
         rotation = rpy_rotation(rpy)
         center = add(rotate(rotation, self.center_of_mass), [float(v) for v in xyz])
         return MassProperties(self.mass, center, conjugated(self.inertia, rotation),

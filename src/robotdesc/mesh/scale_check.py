@@ -2,17 +2,14 @@
 
 The robot's size is the diagonal of the box spanned by its joint frames at the zero
 configuration (m); a robot without joints has no size of its own and is judged by its other
-meshes only.
+meshes only. Plain Python (a few joints need no numpy).
 """
 
 from __future__ import annotations
 
-import statistics
 from typing import Sequence
 
-import numpy as np
-
-from robotdesc.mesh.mass import rpy_matrix
+from robotdesc.inertia.tensor import add, compose, norm, rotate, rpy_rotation, subtract
 from robotdesc.model.elements import Robot
 
 #: A mesh is suspicious when it is this many times larger than the robot (or its peers).
@@ -28,8 +25,9 @@ def robot_size(robot: Robot) -> float:
         children.setdefault(joint.parent, []).append(joint)
     child_names = {j.child for j in robot.joints}
     roots = [link.name for link in robot.links if link.name not in child_names]
+    identity = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
     points = []
-    stack = [(name, np.eye(3), np.zeros(3)) for name in roots]
+    stack = [(name, identity, (0.0, 0.0, 0.0)) for name in roots]
     seen = set()
     while stack:
         name, rotation, position = stack.pop()
@@ -38,13 +36,14 @@ def robot_size(robot: Robot) -> float:
         seen.add(name)
         points.append(position)
         for joint in children.get(name, ()):
-            offset = rotation @ np.asarray(joint.origin.xyz, dtype=float)
-            stack.append((joint.child, rotation @ rpy_matrix(joint.origin.rpy),
-                          position + offset))
+            offset = rotate(rotation, [float(v) for v in joint.origin.xyz])
+            stack.append((joint.child, compose(rotation, rpy_rotation(joint.origin.rpy)),
+                          add(position, offset)))
     if len(points) < 2:
         return 0.0
-    cloud = np.asarray(points)
-    return float(np.linalg.norm(cloud.max(axis=0) - cloud.min(axis=0)))
+    low = tuple(min(p[i] for p in points) for i in range(3))
+    high = tuple(max(p[i] for p in points) for i in range(3))
+    return norm(subtract(high, low))
 
 
 def looks_like_millimetres(diagonal: float, size: float, others: Sequence[float]) -> bool:
@@ -57,7 +56,14 @@ def looks_like_millimetres(diagonal: float, size: float, others: Sequence[float]
     """
     if diagonal < MIN_SUSPICIOUS_SIZE:
         return False
-    reference = size if size > 0 else (statistics.median(others) if others else 0.0)
+    reference = size if size > 0 else (_median(others) if others else 0.0)
     if reference <= 0:
         return False
     return diagonal > TOO_LARGE_FACTOR * reference and diagonal / 1000 < 5 * reference
+
+
+def _median(values: Sequence[float]) -> float:
+    """The median (the `statistics` module costs more to import than this whole check)."""
+    ordered = sorted(values)
+    middle = len(ordered) // 2
+    return ordered[middle] if len(ordered) % 2 else (ordered[middle - 1] + ordered[middle]) / 2

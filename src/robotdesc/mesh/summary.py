@@ -1,5 +1,5 @@
-"""What robotdesc knows about one mesh file: mass properties, bounds, health, and how the
-mass properties were obtained when the surface is not a clean closed solid.
+"""Summarize a loaded mesh: mass properties, bounds, health, and how the mass properties
+were obtained when the surface is not a clean closed solid (numpy; scipy for the hull).
 
 Fallbacks, stated in `MeshSummary.method` and `notes`:
 - closed and oriented (every edge run as often each way), positive volume: the exact
@@ -12,72 +12,30 @@ Fallbacks, stated in `MeshSummary.method` and `notes`:
   hull of its vertices ("convex-hull"), an upper bound on the volume;
 - no hull either (flat or collinear points): no mass properties ("none").
 A negative or NaN mass is never produced.
+
+The records (`MeshSummary`, `MassMethod`) live in `robotdesc.mesh.records` and reading a file
+through the cache in `robotdesc.mesh.analyze`; both are re-exported here.
 """
 
 from __future__ import annotations
 
-import enum
 import logging
-import os
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
+from robotdesc.mesh.analyze import analyze_mesh_file
 from robotdesc.mesh.health import MeshHealth, hole_caps, merge_vertices, mesh_health, topology
-from robotdesc.mesh.load import LoadedMesh, load_mesh
+from robotdesc.mesh.load import LoadedMesh
 from robotdesc.mesh.mass import MassProperties, Vec3, VolumeIntegrals, bounds, volume_integrals
-from robotdesc.mesh.validate import DEFAULT_LIMITS, MeshError, MeshLimits
+from robotdesc.mesh.records import MassMethod, MeshSummary
 
-if TYPE_CHECKING:
-    from robotdesc.mesh.cache import MeshCache
+__all__ = ["FLAT_VOLUME_FRACTION", "MassMethod", "MeshSummary", "analyze_mesh_file",
+           "convex_hull_properties", "summarize"]
 
 log = logging.getLogger(__name__)
 
 #: A closed mesh whose |signed volume| is below this fraction of its bounding box's is flat.
 FLAT_VOLUME_FRACTION = 1e-9
-
-
-class MassMethod(str, enum.Enum):
-    """How a summary's mass properties were computed."""
-
-    EXACT = "exact"
-    FLIPPED = "flipped"
-    HOLES_CAPPED = "holes-capped"
-    CONVEX_HULL = "convex-hull"
-    NONE = "none"
-
-
-@dataclass(frozen=True)
-class MeshSummary:
-    """Mass properties, bounds and health of one mesh file at one scale.
-
-    Attributes:
-        properties: at density 1 kg/m^3 (mass = volume, m^3) in the mesh's own frame (m);
-            None when no solid could be made of it (method NONE).
-        method: how `properties` were obtained (see the module docstring).
-        signed_volume: the volume the surface encloses as wound (m^3); negative when inverted.
-        bounds: (lower, upper) corners of the axis-aligned bounding box (m).
-        health: the surface's topology.
-        unit_meter: the COLLADA unit factor applied (1.0 for other formats).
-        bodies: number of geometries combined from the file.
-        notes: the fallbacks taken, in a user's words.
-    """
-
-    properties: MassProperties | None
-    method: MassMethod
-    signed_volume: float
-    bounds: tuple[Vec3, Vec3]
-    health: MeshHealth
-    unit_meter: float = 1.0
-    bodies: int = 1
-    notes: tuple[str, ...] = ()
-
-    @property
-    def extent(self) -> Vec3:
-        """Size of the bounding box along x, y, z (m)."""
-        low, high = self.bounds
-        return (high[0] - low[0], high[1] - low[1], high[2] - low[2])
 
 
 def summarize(mesh: LoadedMesh) -> MeshSummary:
@@ -124,33 +82,6 @@ def _oriented(integrals: VolumeIntegrals, method: MassMethod, notes: tuple[str, 
 def _flat(volume: float, box: tuple[Vec3, Vec3]) -> bool:
     diagonal = float(np.linalg.norm(np.subtract(box[1], box[0])))
     return abs(volume) <= FLAT_VOLUME_FRACTION * diagonal ** 3
-
-
-def analyze_mesh_file(path: str | os.PathLike[str], scale: Sequence[float] = (1.0, 1.0, 1.0),
-                      limits: MeshLimits = DEFAULT_LIMITS,
-                      cache: MeshCache | None = None) -> MeshSummary:
-    """Load and summarize a mesh file, through the cache when one is given.
-
-    Raises:
-        MeshError: the file cannot be used as a mesh (also served from the cache).
-    """
-    name = os.fspath(path)
-    key = cache.key_for(name, scale) if cache is not None else None
-    if cache is not None and key is not None:
-        hit = cache.get(key, name)
-        if hit is not None:
-            if isinstance(hit, MeshError):
-                raise hit
-            return hit
-    try:
-        summary = summarize(load_mesh(name, scale, limits))
-    except MeshError as error:
-        if cache is not None and key is not None:
-            cache.put_error(key, error)
-        raise
-    if cache is not None and key is not None:
-        cache.put(key, summary)
-    return summary
 
 
 def convex_hull_properties(triangles: np.ndarray) -> MassProperties | None:

@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import html
 import os
-from typing import Any, Iterable, Sequence
+from collections.abc import Iterable, Sequence
+from typing import Any
 
 from robotdesc.report.html_data import ReportData
 
@@ -115,9 +116,13 @@ def _findings_section(data: ReportData) -> str:
 
 
 def _inertia_section(data: ReportData) -> str:
-    rows = data.inertia_rows
-    if rows is None:
+    if data.inertia_rows is None:
         return '<p class="note">The inertia table was not computed.</p>'
+    return inertia_rows_html(data.inertia_rows)
+
+
+def inertia_rows_html(rows: Sequence[Any]) -> str:
+    """The inertia table (`robotdesc.inertia.table.InertiaRow`s) as HTML (also for Jupyter)."""
     if not rows:
         return '<p class="note">No link declares an inertial or has geometry.</p>'
     body = []
@@ -176,11 +181,13 @@ def _collision_section(data: ReportData) -> str:
         parts.append(_table(("link", "visual", "visual triangles", "collision",
                              "collision triangles", "visual : collision"), body, scroll=True))
     if data.collision is not None:
-        parts.append(_generated_collision(data.collision))
+        parts.append(collision_result_html(data.collision))
     return "\n".join(parts) or '<p class="note">No geometry.</p>'
 
 
-def _generated_collision(result: Any) -> str:
+def collision_result_html(result: Any) -> str:
+    """A `CollisionResult` as an HTML heading, totals line and per-link table (also its
+    Jupyter display)."""
     body = []
     for outcome in result.outcomes:
         r = outcome.report

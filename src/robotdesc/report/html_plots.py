@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import io
 import re
-from typing import Sequence
+from collections.abc import Sequence
 
 Vec3 = tuple[float, float, float]
 
@@ -45,7 +45,7 @@ def _svg(figure, salt: str) -> str:
     text = buffer.getvalue()
     start = text.find("<svg")
     svg = text[start:] if start >= 0 else text
-    return re.sub(r"<metadata>.*?</metadata>", "", svg, flags=re.S)
+    return re.sub(r"<metadata>.*?</metadata>", "", svg, flags=re.DOTALL)
 
 
 def moments_plot(rows: Sequence[tuple[str, Vec3, Vec3]], total: int | None = None

@@ -79,7 +79,7 @@ def fails_settle_test(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     from robotdesc.sim.settle import SettleOptions
 
     options = ctx.options or SettleRuleOptions()
-    find_package = getattr(ctx.meshes, "_find_package", None)
+    find_package = getattr(ctx.meshes, "find_package", None)
     meshes = (MeshAssets(find_package, _base_dir(robot)) if callable(find_package)
               else mesh_assets_for(robot.source))
     settings = SimOptions(settle=SettleOptions(seconds=options.seconds,

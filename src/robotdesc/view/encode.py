@@ -5,7 +5,7 @@ the float32 the GPU draws anyway)."""
 from __future__ import annotations
 
 import base64
-from typing import Iterable, Mapping
+from collections.abc import Iterable, Mapping
 
 import numpy as np
 
@@ -40,7 +40,7 @@ def scene_document(scene: Scene, findings: Mapping[str, Iterable[Diagnostic]] | 
     for shape in scene.geometries:
         wide = len(shape.vertices) > 65535
         geometries.append({
-            "label": shape.label, "faces": int(len(shape.faces)),
+            "label": shape.label, "faces": len(shape.faces),
             "source_faces": int(shape.source_faces), "primitive": shape.primitive,
             "positions": b64_array(shape.vertices, "<f4"),
             "indices": b64_array(shape.faces, "<u4" if wide else "<u2"),

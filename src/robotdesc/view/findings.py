@@ -7,7 +7,7 @@ else (robot-wide, transmissions) belongs to no link.
 
 from __future__ import annotations
 
-from typing import Iterable
+from collections.abc import Iterable
 
 from robotdesc.diagnostics import Diagnostic
 from robotdesc.model.elements import Robot

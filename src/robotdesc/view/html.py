@@ -44,11 +44,11 @@ def view_fragment(document: dict, element_id: str = "robotdesc-view", height: st
         include_viewer: inline viewer.js (False when the page already holds it).
     """
     data_id = f"{element_id}-data"
-    parts = [f'<script type="application/json" id="{html.escape(data_id)}">'
-             f"{embedded_json(document)}</script>",
-             f'<div id="{html.escape(element_id)}" class="robotdesc-view" '
-             f'data-robotdesc-scene="{html.escape(data_id)}" '
-             f'style="height:{html.escape(height)}"></div>']
+    parts = [(f'<script type="application/json" id="{html.escape(data_id)}">'
+              f"{embedded_json(document)}</script>"),
+             (f'<div id="{html.escape(element_id)}" class="robotdesc-view" '
+              f'data-robotdesc-scene="{html.escape(data_id)}" '
+              f'style="height:{html.escape(height)}"></div>')]
     if include_viewer:
         parts.append(inline_script(viewer_script()))
     return "\n".join(parts)

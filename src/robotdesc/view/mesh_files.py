@@ -4,7 +4,7 @@ paths from the file that holds the element), without computing any mass properti
 from __future__ import annotations
 
 import os
-from typing import Callable, Sequence
+from collections.abc import Callable, Sequence
 
 from robotdesc.mesh.resolve import MeshResolution, resolve_mesh
 from robotdesc.model.elements import MeshRef, Robot

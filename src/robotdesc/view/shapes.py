@@ -7,6 +7,8 @@ capsules, as in URDF).
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 
 from robotdesc.model.elements import Box, Capsule, Cylinder, Sphere
@@ -41,7 +43,7 @@ def _rings(profile: list[tuple[float, float]], segments: int) -> Mesh:
             vertices.append(np.column_stack([radius * cos, radius * sin, np.full(segments, z)]))
             rings.append(list(range(start, start + segments)))
     faces = []
-    for lower, upper in zip(rings, rings[1:]):
+    for lower, upper in itertools.pairwise(rings):
         for i in range(segments):
             j = (i + 1) % segments
             a, b, c, d = lower[i], lower[j], upper[j], upper[i]

@@ -9,8 +9,9 @@ from __future__ import annotations
 
 import html
 import os
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any
 
 from robotdesc.diagnostics import Diagnostic
 from robotdesc.model.elements import Robot

@@ -3,7 +3,7 @@
  * No dependencies and no network. Each element with a `data-robotdesc-scene` attribute (the
  * id of a JSON script element holding the document written by
  * robotdesc/view/encode.py) becomes a viewer: orbit (drag), pan (shift- or right-drag), zoom
- * (wheel), reset (double-click); toggles for visual and collision geometry, the equivalent
+ * (wheel), reset (double-click), select a link (click it, or pick it in the list); toggles for visual and collision geometry, the equivalent
  * inertia boxes and the highlighting of links with findings; a list of links (click one to
  * select it). The page's state is mirrored on the element's data-* attributes for tests.
  */
@@ -24,6 +24,7 @@
     ".rd-controls{padding:4px 10px;border-bottom:1px solid #e2e4ea}",
     ".rd-controls label{display:block;white-space:nowrap}",
     ".rd-summary{padding:4px 10px;color:#556}",
+    ".rd-filter{margin:2px 10px 6px;padding:2px 4px;font:inherit}",
     ".rd-links{list-style:none;margin:0;padding:0;overflow:auto;flex:1 1 auto;min-height:60px}",
     ".rd-links li{padding:1px 10px;cursor:pointer;white-space:nowrap;overflow:hidden;",
     "text-overflow:ellipsis}",
@@ -52,7 +53,8 @@
     "vec3 key=normalize(vec3(0.35,0.55,0.76));vec3 fill=normalize(vec3(-0.6,-0.2,0.5));",
     "float d=0.62*abs(dot(n,key))+0.18*abs(dot(n,fill));",
     "float shade=mix(1.0,0.3+d,uLit);",
-    "gl_FragColor=vec4(min(uColor.rgb*shade,vec3(1.0)),uColor.a);}"
+    "vec3 lift=vec3(0.14*d*uLit);",  // dark materials still show their form
+    "gl_FragColor=vec4(min(uColor.rgb*shade+lift,vec3(1.0)),uColor.a);}"
   ].join("\n");
 
   var FINDING_COLOR = [0.86, 0.16, 0.12];
@@ -160,6 +162,7 @@
   function Viewer(root, doc) {
     this.root = root;
     this.doc = doc;
+    root.robotdescViewer = this;
     this.show = {visual: true, collision: false, inertia: false, findings: true};
     var wanted = doc.show || {};
     for (var key in wanted) if (key in this.show) this.show[key] = !!wanted[key];
@@ -196,7 +199,8 @@
     this.canvas = element("canvas");
     this.stage.appendChild(this.canvas);
     this.stage.appendChild(element("div", "rd-hint",
-      "drag: rotate \u00b7 shift/right-drag: pan \u00b7 wheel: zoom \u00b7 double-click: reset"));
+      "click: select a link \u00b7 drag: rotate \u00b7 shift/right-drag: pan \u00b7 wheel: zoom " +
+      "\u00b7 double-click: reset"));
     root.appendChild(this.stage);
     var side = element("div", "rd-side");
     side.appendChild(element("div", "rd-title", doc.title || doc.robot));
@@ -221,6 +225,16 @@
     var summary = doc.links.length + " links, " + withFindings + " with findings";
     if (doc.problems.length) summary += ", " + doc.problems.length + " geometries not shown";
     side.appendChild(element("div", "rd-summary", summary));
+    var filter = element("input", "rd-filter");
+    filter.type = "search";
+    filter.placeholder = "filter links";
+    filter.addEventListener("input", function () {
+      var text = filter.value.toLowerCase();
+      Object.keys(self.items).forEach(function (name) {
+        self.items[name].style.display = name.toLowerCase().indexOf(text) >= 0 ? "" : "none";
+      });
+    });
+    side.appendChild(filter);
     this.list = element("ul", "rd-links");
     this.items = {};
     doc.links.forEach(function (link) {
@@ -247,7 +261,10 @@
       this.items[this.selected].classList.remove("rd-selected");
     }
     this.selected = name;
-    if (name && this.items[name]) this.items[name].classList.add("rd-selected");
+    if (name && this.items[name]) {
+      this.items[name].classList.add("rd-selected");
+      if (this.items[name].scrollIntoView) this.items[name].scrollIntoView({block: "nearest"});
+    }
     this.root.setAttribute("data-selected", name || "");
     this.showDetail();
     this.redraw();
@@ -363,12 +380,23 @@
   Viewer.prototype.bindInput = function () {
     var self = this, canvas = this.canvas, last = null, mode = null;
     canvas.addEventListener("contextmenu", function (event) { event.preventDefault(); });
+    var pressed = null;
     canvas.addEventListener("mousedown", function (event) {
       mode = (event.button === 2 || event.shiftKey) ? "pan" : "orbit";
       last = [event.clientX, event.clientY];
+      pressed = last;
       event.preventDefault();
     });
-    window.addEventListener("mouseup", function () { mode = null; });
+    window.addEventListener("mouseup", function (event) {
+      mode = null;
+      if (pressed && event.target === canvas && event.button === 0 &&
+          Math.abs(event.clientX - pressed[0]) + Math.abs(event.clientY - pressed[1]) < 4) {
+        var box = canvas.getBoundingClientRect();
+        var link = self.pick(event.clientX - box.left, event.clientY - box.top);
+        self.select(link === self.selected ? null : link);
+      }
+      pressed = null;
+    });
     window.addEventListener("mousemove", function (event) {
       if (!mode) return;
       var dx = event.clientX - last[0], dy = event.clientY - last[1];
@@ -405,6 +433,48 @@
       for (var i = 0; i < 3; i++) this.target[i] += (-dx * right[i] + dy * up[i]) * scale;
     }
     this.redraw();
+  };
+
+  /** The link drawn at canvas position (x, y) in CSS pixels, or null: each visible shape is
+   *  drawn in a colour that encodes its index into an offscreen buffer, and one pixel read. */
+  Viewer.prototype.pick = function (x, y) {
+    var gl = this.gl, self = this, width = this.canvas.width, height = this.canvas.height;
+    if (!gl) return null;
+    var target = this.pickTarget;
+    if (!target || target.width !== width || target.height !== height) {
+      target = {width: width, height: height, frame: gl.createFramebuffer(),
+                color: gl.createTexture(), depth: gl.createRenderbuffer()};
+      gl.bindTexture(gl.TEXTURE_2D, target.color);
+      gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA, width, height, 0, gl.RGBA, gl.UNSIGNED_BYTE, null);
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+      gl.bindRenderbuffer(gl.RENDERBUFFER, target.depth);
+      gl.renderbufferStorage(gl.RENDERBUFFER, gl.DEPTH_COMPONENT16, width, height);
+      gl.bindFramebuffer(gl.FRAMEBUFFER, target.frame);
+      gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, target.color, 0);
+      gl.framebufferRenderbuffer(gl.FRAMEBUFFER, gl.DEPTH_ATTACHMENT, gl.RENDERBUFFER,
+                                 target.depth);
+      this.pickTarget = target;
+    }
+    gl.bindFramebuffer(gl.FRAMEBUFFER, target.frame);
+    gl.viewport(0, 0, width, height);
+    gl.clearColor(0, 0, 0, 0);
+    gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
+    gl.disable(gl.BLEND);
+    gl.depthMask(true);
+    this.doc.instances.forEach(function (instance, index) {
+      if (!(instance.kind === "visual" ? self.show.visual : self.show.collision)) return;
+      var id = index + 1;
+      self.drawMesh(self.meshes[instance.geometry], instance.matrix,
+                    [(id & 255) / 255, ((id >> 8) & 255) / 255, ((id >> 16) & 255) / 255, 1],
+                    0, gl.TRIANGLES);
+    });
+    var ratio = width / Math.max(1, this.canvas.clientWidth), pixel = new Uint8Array(4);
+    gl.readPixels(Math.floor(x * ratio), height - 1 - Math.floor(y * ratio), 1, 1, gl.RGBA,
+                  gl.UNSIGNED_BYTE, pixel);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    gl.enable(gl.BLEND);
+    var hit = pixel[0] + pixel[1] * 256 + pixel[2] * 65536;
+    return hit > 0 && hit <= this.doc.instances.length ? this.doc.instances[hit - 1].link : null;
   };
 
   Viewer.prototype.redraw = function () {
