@@ -78,14 +78,14 @@ def build(root: Path, links: int, segments: int) -> tuple[Path, int]:
         write_stl(package / "meshes" / f"link{i}.stl", triangles)
         mesh = f'<mesh filename="package://bench_arm/meshes/link{i}.stl"/>'
         parts += [f'  <link name="link{i}">',
-                  f'    <inertial><mass value="{mass}"/><inertia ixx="{moment_side:.6g}" ixy="0" '
-                  f'ixz="0" iyy="{moment_side:.6g}" iyz="0" izz="{moment_axis:.6g}"/></inertial>',
+                  (f'    <inertial><mass value="{mass}"/><inertia ixx="{moment_side:.6g}" ixy="0" '
+                   f'ixz="0" iyy="{moment_side:.6g}" iyz="0" izz="{moment_axis:.6g}"/></inertial>'),
                   f"    <visual><geometry>{mesh}</geometry></visual>",
                   f"    <collision><geometry>{mesh}</geometry></collision>", "  </link>",
-                  f'  <joint name="j{i}" type="revolute"><origin xyz="0 0 {length}"/>'
-                  f'<parent link="{"base" if i == 0 else f"link{i - 1}"}"/>'
-                  f'<child link="link{i}"/><axis xyz="0 1 0"/>'
-                  '<limit lower="-1" upper="1" effort="10" velocity="1"/></joint>']
+                  (f'  <joint name="j{i}" type="revolute"><origin xyz="0 0 {length}"/>'
+                   f'<parent link="{"base" if i == 0 else f"link{i - 1}"}"/>'
+                   f'<child link="link{i}"/><axis xyz="0 1 0"/>'
+                   '<limit lower="-1" upper="1" effort="10" velocity="1"/></joint>')]
     parts.append("</robot>")
     urdf = package / "arm.urdf"
     urdf.write_text("\n".join(parts) + "\n")
@@ -96,7 +96,8 @@ def wall_time(command: list[str], env: dict[str, str]) -> tuple[float, float]:
     """(wall time, CPU time user + system) of one whole process, in seconds."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
-    done = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env)
+    done = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env,
+                          check=False)
     elapsed = time.perf_counter() - start
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if done.returncode not in (0, 1):
@@ -109,7 +110,8 @@ def wall_time(command: list[str], env: dict[str, str]) -> tuple[float, float]:
 def imported_modules(command: list[str], env: dict[str, str]) -> set[str]:
     """The modules a process imports, from `python -X importtime` (command[0] is python)."""
     done = subprocess.run([command[0], "-X", "importtime", *command[1:]],
-                          stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env)
+                          stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env,
+                          check=False)
     return set(re.findall(r"^import time:\s+\d+ \|\s+\d+ \|\s*(\S+)",
                           done.stderr.decode(), re.MULTILINE))
 

@@ -6,8 +6,8 @@ import json
 from pathlib import Path
 
 import pytest
-
 from mesh.builders import box_triangles, write_binary_stl
+
 from robotdesc.cli import main
 
 URDF = """<?xml version="1.0"?>

@@ -7,11 +7,11 @@ from collections import Counter
 from pathlib import Path
 
 import pytest
+from support import example_robot_data_dir, example_robot_urdfs
 
 from robotdesc.diagnostics import Severity
 from robotdesc.expansion import ExpandOptions
 from robotdesc.linting.driver import lint_file
-from support import example_robot_data_dir, example_robot_urdfs
 
 ROBOTS = example_robot_data_dir()
 pytestmark = pytest.mark.skipif(ROBOTS is None, reason="example-robot-data is not installed")

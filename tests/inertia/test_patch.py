@@ -29,8 +29,8 @@ def test_block_is_plain_urdf_in_link_axes() -> None:
     block = format_inertial(box_properties(0.1, 0.2, 0.4).scaled_to_mass(2.0))
     assert block.splitlines() == [
         "<inertial>", '  <origin xyz="0 0 0" rpy="0 0 0"/>', '  <mass value="2"/>',
-        '  <inertia ixx="0.0333333" ixy="0" ixz="0" iyy="0.0283333" iyz="0" '
-        'izz="0.00833333"/>', "</inertial>"]
+        ('  <inertia ixx="0.0333333" ixy="0" ixz="0" iyy="0.0283333" iyz="0" '
+         'izz="0.00833333"/>'), "</inertial>"]
 
 
 def test_patch_replaces_and_adds_blocks_without_touching_the_file(tmp_path: Path) -> None:

@@ -60,3 +60,8 @@ def test_link_without_the_configured_source_says_which_was_used(context: MeshCon
 def test_lookups_are_remembered(context: MeshContext) -> None:
     ref = context.robot.link("a").visuals[0].geometry
     assert context.lookup(ref) is context.lookup(ref)
+
+
+def test_find_package_is_public_and_never_falls_back(context: MeshContext, tmp_path: Path) -> None:
+    assert context.find_package("pkg") == str(tmp_path / "pkg")
+    assert context.find_package("twin") is None

@@ -74,8 +74,8 @@ def format_inertial(body: MassProperties, comment: str | None = None) -> str:
     lines += [
         f'  <origin xyz="{_vec(body.center_of_mass)}" rpy="0 0 0"/>',
         f'  <mass value="{_num(body.mass)}"/>',
-        f'  <inertia ixx="{_num(ixx)}" ixy="{_num(ixy)}" ixz="{_num(ixz)}" '
-        f'iyy="{_num(iyy)}" iyz="{_num(iyz)}" izz="{_num(izz)}"/>',
+        (f'  <inertia ixx="{_num(ixx)}" ixy="{_num(ixy)}" ixz="{_num(ixz)}" '
+         f'iyy="{_num(iyy)}" iyz="{_num(iyz)}" izz="{_num(izz)}"/>'),
         "</inertial>",
     ]
     return "\n".join(lines)

@@ -9,7 +9,7 @@ angles in rad, inertia in kg*m^2.
 from __future__ import annotations
 
 import math
-from typing import Iterable, Sequence
+from collections.abc import Iterable, Sequence
 
 Vec3 = tuple[float, float, float]
 Mat3 = tuple[Vec3, Vec3, Vec3]
@@ -22,6 +22,10 @@ MAX_MATERIAL_DENSITY = 22_600.0
 
 def principal_moments(matrix: Sequence[Sequence[float]]) -> Vec3:
     """Eigenvalues of a symmetric 3x3 matrix, ascending (closed form, trigonometric method).
+
+    Accurate to rounding for distinct eigenvalues; a repeated pair (an axisymmetric body)
+    comes out split by about 1e-8 of its size, as acos is ill-conditioned there: far below
+    any tolerance the checks use, and the pair's sum stays exact.
 
     Args:
         matrix: rows ((Ixx, Ixy, Ixz), (Ixy, Iyy, Iyz), (Ixz, Iyz, Izz)) in kg*m^2.

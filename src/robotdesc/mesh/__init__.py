@@ -27,7 +27,13 @@ _EXPORTS = {
     "MeshError": "errors", "MeshErrorKind": "errors", "MeshLimits": "errors",
 }
 
-__all__ = sorted(_EXPORTS)
+__all__ = [
+    "LoadedMesh", "MassMethod", "MassProperties", "MeshCache", "MeshError", "MeshErrorKind",
+    "MeshHealth", "MeshLimits", "MeshResolution", "MeshSummary", "ResolveProblem",
+    "ResolveProblemKind", "analyze_mesh_file", "combine", "default_cache_dir",
+    "link_mass_properties", "load_mesh", "mesh_health", "primitive_properties",
+    "resolve_mesh", "rpy_matrix", "summarize", "volume_integrals",
+]
 
 
 def __getattr__(name: str) -> Any:

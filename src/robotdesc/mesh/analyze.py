@@ -7,7 +7,8 @@ numpy, trimesh or scipy. Only a miss imports the loaders and `robotdesc.mesh.sum
 from __future__ import annotations
 
 import os
-from typing import TYPE_CHECKING, Sequence
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 from robotdesc.mesh.errors import DEFAULT_LIMITS, MeshError, MeshLimits
 from robotdesc.mesh.records import MeshSummary

@@ -21,8 +21,9 @@ import logging
 import os
 import stat
 import tempfile
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 from robotdesc.mesh.errors import MeshError, MeshErrorKind
 from robotdesc.mesh.properties import MassProperties

@@ -15,8 +15,8 @@ from __future__ import annotations
 
 import logging
 import os
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
-from typing import Callable, Iterator
 
 from robotdesc.config import MeshSettings
 from robotdesc.mesh.analyze import analyze_mesh_file
@@ -233,7 +233,8 @@ class MeshContext:
             parts.append(props.transformed(shape.origin.xyz, shape.origin.rpy))
             boxes.append(moved_bounds(box, shape.origin.xyz, shape.origin.rpy))
         if not parts:
-            return LinkGeometry(link.name, source, None, None, tuple(unmeasured), notes=tuple(notes))
+            return LinkGeometry(link.name, source, None, None, tuple(unmeasured),
+                                notes=tuple(notes))
         low = tuple(min(b[0][i] for b in boxes) for i in range(3))
         high = tuple(max(b[1][i] for b in boxes) for i in range(3))
         if estimated:

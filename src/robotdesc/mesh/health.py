@@ -169,7 +169,7 @@ def _count_loops(topo: Topology) -> int:
     if len(a) == 0:
         return 0
     labels = _loop_labels(a, b, len(topo.vertices))
-    return int(len(np.unique(labels[a])))
+    return len(np.unique(labels[a]))
 
 
 def _row_hashes(rows: np.ndarray, chunk: int = 1 << 16) -> np.ndarray:

@@ -12,8 +12,8 @@ import logging
 import os
 import stat
 import warnings
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
-from typing import Iterator, Sequence
 
 import numpy as np
 

@@ -15,17 +15,27 @@ rigid transforms and sums are plain Python in `robotdesc.mesh.properties` (re-ex
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import numpy as np
 
 from robotdesc.inertia.tensor import Mat3, Vec3, rpy_rotation
 from robotdesc.mesh.properties import MassProperties, combine, link_mass_properties
 
-__all__ = ["CHUNK_TRIANGLES", "Mat3", "MassProperties", "Vec3", "VolumeIntegrals", "bounds",
-           "combine", "link_mass_properties", "reference_point", "rpy_matrix",
-           "volume_integrals"]
+__all__ = [
+    "CHUNK_TRIANGLES",
+    "MassProperties",
+    "Mat3",
+    "Vec3",
+    "VolumeIntegrals",
+    "bounds",
+    "combine",
+    "link_mass_properties",
+    "reference_point",
+    "rpy_matrix",
+    "volume_integrals",
+]
 
 #: Triangles per numpy chunk: large enough to amortise numpy's call overhead, small enough
 #: for the temporaries to stay in cache.

@@ -12,8 +12,9 @@ centre of mass, expressed in the frame of the geometry.
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Iterable, Sequence
+from typing import TYPE_CHECKING
 
 from robotdesc.inertia.tensor import (
     ZERO,
@@ -33,8 +34,14 @@ from robotdesc.inertia.tensor import (
 if TYPE_CHECKING:
     import numpy as np
 
-__all__ = ["Mat3", "MassProperties", "Vec3", "combine", "link_mass_properties",
-           "moved_bounds"]
+__all__ = [
+    "MassProperties",
+    "Mat3",
+    "Vec3",
+    "combine",
+    "link_mass_properties",
+    "moved_bounds",
+]
 
 
 @dataclass(frozen=True)

@@ -11,8 +11,8 @@ from __future__ import annotations
 import enum
 import os
 import stat
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 PackageLookup = Callable[[str], "str | None"]
 
@@ -113,8 +113,8 @@ def resolve_mesh(filename: str, *, base_dir: str, find_package: PackageLookup,
 def _resolve_package(filename: str, rest: str, find_package: PackageLookup) -> MeshResolution:
     warnings: tuple[str, ...] = ()
     if rest.startswith("/"):
-        warnings = (f"'{filename}' has three slashes after 'package:'; write "
-                    f"'package://{rest.lstrip('/')}'",)
+        warnings = ((f"'{filename}' has three slashes after 'package:'; write "
+                     f"'package://{rest.lstrip('/')}'"),)
         rest = rest.lstrip("/")
     package, _, relative = rest.partition("/")
     if not package or not relative:

@@ -7,7 +7,7 @@ meshes only. Plain Python (a few joints need no numpy).
 
 from __future__ import annotations
 
-from typing import Sequence
+from collections.abc import Sequence
 
 from robotdesc.inertia.tensor import add, compose, norm, rotate, rpy_rotation, subtract
 from robotdesc.model.elements import Robot

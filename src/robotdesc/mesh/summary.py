@@ -46,8 +46,8 @@ def summarize(mesh: LoadedMesh) -> MeshSummary:
     box = bounds(triangles)
     integrals = volume_integrals(triangles)
     signed = integrals.volume
-    common = dict(signed_volume=signed, bounds=box, health=health,
-                  unit_meter=mesh.unit_meter, bodies=mesh.bodies)
+    common = {"signed_volume": signed, "bounds": box, "health": health,
+              "unit_meter": mesh.unit_meter, "bodies": mesh.bodies}
     if health.encloses_volume and not _flat(signed, box):
         return _oriented(integrals, MassMethod.EXACT, (), common)
     if (health.boundary_edges and not health.misoriented_edges

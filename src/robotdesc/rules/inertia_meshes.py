@@ -94,7 +94,7 @@ def inertia_differs_from_geometry(robot: Robot, ctx: RuleContext) -> Iterator[Fi
     from robotdesc.inertia.compare import compare_inertia, mirror_partner
 
     tolerance = ctx.options.tolerance if ctx.options else InertiaMismatchOptions.tolerance
-    measured = dict((link.name, (link, geometry)) for link, geometry in _measured(robot, ctx))
+    measured = {link.name: (link, geometry) for link, geometry in _measured(robot, ctx)}
     results = {}
     for name, (link, geometry) in measured.items():
         if link.inertial.inertia is None:
@@ -261,8 +261,8 @@ def _density_cause(density: float, options: DensityOptions) -> str | None:
     causes = ((1e-3, "the mass looks like grams"),
               (1e9, "the geometry looks like millimetres (volume 1e9 times too large)"),
               (1e6, "the geometry looks like centimetres (volume 1e6 times too large)"),
-              (1e-9, "the geometry looks 1000 times too small (a scale of 0.001 on a mesh "
-                     "already in metres?)"))
+              (1e-9, ("the geometry looks 1000 times too small (a scale of 0.001 on a mesh "
+                      "already in metres?)")))
     for factor, cause in causes:
         if options.min_density <= density * factor <= options.max_density:
             return cause
