@@ -79,3 +79,15 @@ def test_the_worker_environment_is_clean(tmp_path, monkeypatch):
     assert "allowlist" in caught.value.message
     assert "hunter2" not in str(caught.value)
     assert os.environ["ROBOTDESC_SECRET_TOKEN"] == "hunter2"
+
+
+def test_unknown_macro_through_xacro_call_is_named(tmp_path):
+    source = tmp_path / "call.urdf.xacro"
+    source.write_text('<robot name="c" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                      '  <link name="base"/>\n'
+                      '  <xacro:call macro="missing_macro"/>\n'
+                      '</robot>\n')
+    with pytest.raises(errors.ExpansionError) as caught:
+        expand_file(source, options=ExpandOptions(use_cache=False))
+    assert caught.value.span.line == 3
+    assert "missing_macro" in caught.value.message and "undefined" in caught.value.message

@@ -68,6 +68,8 @@ def _message(exc: BaseException) -> str:
     if isinstance(cause, (sandbox.Forbidden, hooks.MacroTooDeep, hooks.IncludeCycle)) \
             or type(cause).__name__ == "_UnknownPackage":
         return str(cause)
+    if isinstance(cause, KeyError):
+        return f"undefined name {cause} (an unknown macro, block or dictionary key)"
     if cause is not exc and str(cause):
         kind = "invalid expression: " if isinstance(cause, SyntaxError) else ""
         suffix = getattr(exc, "suffix", None) or ""
