@@ -68,7 +68,7 @@ result = robotdesc.lint(str(ENGINEER))
 print(result)
 for (code, name), count in Counter((d.code, d.name) for d in result.diagnostics).most_common():
     print(f"  {code} {name}: {count}")
-for diagnostic in [d for d in result.diagnostics if d.code == "I201"][:2]:
+for diagnostic in result.diagnostics[:3]:  # the bundled Engineer has none
     print(f"\n{diagnostic.where.span}: {diagnostic.message}")
 result  # noqa: B018 (displayed by the notebook)
 

@@ -127,9 +127,10 @@ def test_report_in_the_browser(tmp_path: Path, target: str) -> None:
     assert drawn_pixels(pixels[240:740, 40:900]) > 0.02, "the 3D view's canvas is blank"
     dom = dump_dom(page, (1280, 1000))
     assert 'data-status="ready"' in dom
-    result_links = ("finger_left", "finger_right") if target == "demo" else (
-        "left_flipper_link", "left_main_track_link")
-    for link in result_links:
+    if target == "engineer":  # lint-clean: every link listed, none flagged
+        assert 'data-link="left_flipper_link"' in dom and 'class="rd-finding"' not in dom
+        return
+    for link in ("finger_left", "finger_right"):
         assert re.search(rf'<li class="rd-finding" data-link="{link}"', dom)  # the viewer
         assert f'<details data-link="{link}"' in dom or \
             f'<details open="" data-link="{link}"' in dom  # the findings section

@@ -99,10 +99,24 @@ def test_readme_polygon_table_matches_the_meshes():
         assert int(row.group(1).replace(",", "")) == _stl_triangles(stl), stl.name
 
 
+def test_readme_polygon_table_lists_every_collision_set(scripts):
+    from robotdesc.collision.manifest import read_manifest
+
+    readme = (PACKAGE / "README.md").read_text()
+    make = importlib.import_module("make_collision")
+    for item in make.SETS:
+        manifest = read_manifest(str(PACKAGE / item.folder))
+        triangles = sum(_stl_triangles(PACKAGE / item.folder / name)
+                        for name in manifest.files if name.endswith(".stl"))
+        row = re.search(rf"^\| `{item.folder}/` \| [^|]+ \| ([\d,]+) \|", readme, re.MULTILINE)
+        assert row, f"no README row for {item.folder}"
+        assert int(row.group(1).replace(",", "")) == triangles, item.folder
+
+
 # ----------------------------------------------------------------------------- meshes
 
 @pytest.mark.slow
-def test_mesh_script_reproduces_committed_meshes_and_inertials(scripts, tmp_path):
+def test_mesh_script_reproduces_committed_meshes(scripts, tmp_path):
     pytest.importorskip("manifold3d", reason="the mesh script needs manifold3d")
     trimesh = pytest.importorskip("trimesh")
     make = importlib.import_module("make_meshes")
@@ -118,12 +132,49 @@ def test_mesh_script_reproduces_committed_meshes_and_inertials(scripts, tmp_path
         assert np.allclose(a.bounds, b.bounds, atol=1e-6), name
         assert a.volume == pytest.approx(b.volume, rel=1e-4), name
         assert a.area == pytest.approx(b.area, rel=1e-4), name
+
+
+def test_inertials_are_robotdesc_measurements_of_the_collision_geometry(scripts):
+    make = importlib.import_module("make_inertials")
     numbers = re.compile(r"-?\d+(?:\.\d+)?(?:e-?\d+)?")
-    new_text = (tmp_path / "urdf" / "inertials.generated.xacro").read_text()
-    old_text = (PACKAGE / "urdf" / "inertials.generated.xacro").read_text()
-    new_numbers = [float(v) for v in numbers.findall(new_text)]
-    old_numbers = [float(v) for v in numbers.findall(old_text)]
-    assert np.allclose(new_numbers, old_numbers, rtol=1e-4, atol=1e-9)
+    fresh = make.inertials_xacro(make.measure())
+    committed = (PACKAGE / "urdf" / "inertials.generated.xacro").read_text()
+    assert "collision geometry" in committed
+    assert np.allclose([float(v) for v in numbers.findall(fresh)],
+                       [float(v) for v in numbers.findall(committed)], rtol=1e-6, atol=1e-12)
+
+
+@pytest.mark.slow
+def test_collision_meshes_match_their_manifests(scripts):
+    """`robotdesc collision ... --check` with each set's own command line: nothing stale."""
+    from robotdesc.cli import main
+
+    make = importlib.import_module("make_collision")
+    assert make.SETS
+    for item in make.SETS:
+        assert (PACKAGE / item.folder / "robotdesc-collision.json").is_file(), item.folder
+        assert main(item.arguments(check=True, jobs=1)) == 0, item.folder
+
+
+def test_collision_check_notices_an_edited_mesh(scripts, tmp_path):
+    """The guard can fail: a copy of a set with one mesh changed is reported stale."""
+    import shutil
+
+    from robotdesc.collision.manifest import read_manifest
+
+    make = importlib.import_module("make_collision")
+    item = make.SETS[0]
+    copy = tmp_path / "set"
+    shutil.copytree(PACKAGE / item.folder, copy)
+    manifest = read_manifest(str(copy))
+    first = sorted(name for name in manifest.files if name.endswith(".stl"))[0]
+    with open(copy / first, "ab") as stream:
+        stream.write(b"\0")
+    from robotdesc.cli import main
+
+    args = item.arguments(check=True, jobs=1)
+    args[args.index("--out") + 1] = str(copy)
+    assert main(args) == 1
 
 
 def test_meshes_fit_the_size_budget():
@@ -223,11 +274,12 @@ def test_references_meshes_and_materials_exist(robot):
     materials = {m.get("name") for m in robot.findall("material")}
     for material in robot.findall("link/visual/material"):
         assert material.get("name") in materials
-    files = {p.name for p in MESH_DIR.iterdir()}
+    files = {p.relative_to(PACKAGE).as_posix() for p in (PACKAGE / "meshes").rglob("*.stl")}
     for mesh in robot.iter("mesh"):
         uri = mesh.get("filename")
-        assert uri.startswith("package://engineer_description/meshes/visual/"), uri
-        assert uri.rsplit("/", 1)[1] in files, uri  # exact case, unlike the paper's Cronstain.dae
+        assert uri.startswith("package://engineer_description/meshes/"), uri
+        # exact case, unlike the paper's Cronstain.dae
+        assert uri.removeprefix("package://engineer_description/") in files, uri
 
 
 def test_track_controllers_name_existing_wheels(robot):
@@ -252,3 +304,64 @@ def test_pinocchio_builds_the_model_with_mass_and_mimics(default_expansion):
     model = pin.buildModelFromXML(etree.tostring(root).decode(), pin.JointModelFreeFlyer(), mimic=True)
     assert pin.computeTotalMass(model) == pytest.approx(TABLE_I_MASS, abs=1e-6)
     assert len(model.mimicking_joints) == 6  # five in the gripper, one flipper
+
+
+# ----------------------------------------------------------------------------- robotdesc on the package
+
+VARIANTS = [{}, {"main_track_wheels": "18", "flipper_track_wheels": "31"}, {"with_gripper": "false"},
+            {"with_gripper": "false", "main_track_wheels": "18", "flipper_track_wheels": "31"}]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("args", VARIANTS, ids=lambda a: ",".join(f"{k}={v}" for k, v in a.items()) or "default")
+def test_lints_clean_with_every_rule(args):
+    """The acceptance line of the package: no finding at all, every rule family enabled, with
+    the package's own robotdesc.toml (which sets the expected mass and nothing else)."""
+    import robotdesc
+
+    result = robotdesc.lint(str(TOP), args=args)
+    assert [f"{d.code} {d.message}" for d in result.diagnostics] == []
+
+
+def test_package_config_sets_the_mass_and_hides_nothing():
+    from robotdesc.config import discover_config
+
+    try:
+        import tomllib
+    except ImportError:  # Python 3.10
+        tomllib = pytest.importorskip("tomli")
+
+    config = discover_config(str(TOP))
+    assert config.meshes.expected_mass == pytest.approx(TABLE_I_MASS)
+    assert config.meshes.inertia_source == "collision"
+    with open(PACKAGE / "robotdesc.toml", "rb") as stream:
+        table = tomllib.load(stream)
+    assert set(table) == {"meshes", "targets"}  # no ignore, select, severity, rules, fail-on
+    assert table["meshes"] == {"expected-mass": TABLE_I_MASS}
+
+
+def test_no_link_pair_overlaps_at_the_default_configuration():
+    pytest.importorskip("pinocchio", reason="pinocchio (pin) is not installed")
+    import robotdesc
+    from robotdesc.kinematics.resolve import mesh_resolver, package_lookup
+    from robotdesc.srdf.matrix import default_collisions, prepare_scene
+
+    robot = robotdesc.load(str(TOP), args={"main_track_wheels": "56", "flipper_track_wheels": "50"})
+    prepared = prepare_scene(robot, mesh_resolver(robot, package_lookup(str(TOP))))
+    assert default_collisions(prepared) == []
+    assert not prepared.problems
+
+
+@pytest.mark.slow
+def test_srdf_command_writes_a_collision_matrix(tmp_path):
+    pytest.importorskip("pinocchio", reason="pinocchio (pin) is not installed")
+    from robotdesc.cli import main
+
+    out = tmp_path / "engineer.srdf"
+    code = main(["srdf", str(TOP), "main_track_wheels:=18", "flipper_track_wheels:=31",
+                 "--samples", "200", "--seed", "1", "--jobs", "1", "-o", str(out)])
+    assert code == 0
+    srdf = etree.parse(str(out)).getroot()
+    reasons = {d.get("reason") for d in srdf.findall("disable_collisions")}
+    assert "Adjacent" in reasons and "Never" in reasons
+    assert "Default" not in reasons  # nothing collides at the default configuration
