@@ -28,7 +28,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SystemExit as exc:  # --help, --version (0) and usage errors (2)
         return exc.code if isinstance(exc.code, int) else EXIT_INPUT
     verbose = getattr(ns, "verbose", 0)
-    _configure_logging(verbose)
+    restore = _configure_logging(verbose)
+    try:
+        return _run(ns, verbose)
+    finally:
+        restore()  # leave the "robotdesc" logger as it was (main() may run in-process)
+
+
+def _run(ns: argparse.Namespace, verbose: int) -> int:
+    """Run the chosen command, turning every failure into its exit code."""
     from robotdesc.errors import InputError
 
     try:
@@ -442,14 +450,21 @@ def _use_colour(stream: Any) -> bool:
     return bool(getattr(stream, "isatty", lambda: False)())
 
 
-def _configure_logging(verbose: int) -> None:
+def _configure_logging(verbose: int):
+    """Log robotdesc's messages to stderr; returns a function that undoes it."""
     level = logging.WARNING if not verbose else logging.INFO if verbose == 1 else logging.DEBUG
     handler = logging.StreamHandler(sys.stderr)
     handler.setFormatter(logging.Formatter("robotdesc: %(message)s"))
     root = logging.getLogger("robotdesc")
+    saved = (root.handlers[:], root.level, root.propagate)
     root.handlers[:] = [handler]
     root.setLevel(level)
     root.propagate = False
+
+    def restore() -> None:
+        root.handlers[:], root.level, root.propagate = saved[0], saved[1], saved[2]
+
+    return restore
 
 
 def _silence_stdout() -> None:
