@@ -79,3 +79,16 @@ def test_api_functions_survive_importing_the_subpackages(urdf: Path) -> None:
     assert robotdesc.expand(str(urdf)).source == str(urdf)
     assert robotdesc.lint(str(urdf)).target == str(urdf)
     assert "package_paths" in inspect.signature(robotdesc.lint).parameters
+
+
+def test_mesh_inertia_table_renders_and_serialises() -> None:
+    from support import REPO
+
+    table = robotdesc.mesh_inertia(str(REPO / "robots" / "engineer_description" / "urdf"
+                                       / "engineer.urdf.xacro"), {"main_track_wheels": "4",
+                                                                  "flipper_track_wheels": "4"})
+    assert table.source == "collision"
+    head = table.row("head_link")
+    assert head is not None and head.declared_mass > 0 and head.error is not None and head.error < 0.01
+    assert "<table" in table._repr_html_() and "head_link" in str(table)
+    assert table.to_dict()["links"][0]["link"] == table.rows[0].link

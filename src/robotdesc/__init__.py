@@ -17,12 +17,13 @@ from typing import TYPE_CHECKING, Mapping, Sequence
 if TYPE_CHECKING:  # pragma: no cover
     from robotdesc.config import Config
     from robotdesc.expansion.result import Expanded
+    from robotdesc.inertia.table import InertiaTable
     from robotdesc.linting.result import LintResult
     from robotdesc.model.elements import Robot
 
 __version__ = "0.1.0"
 
-__all__ = ["__version__", "expand", "generate_collision", "lint", "load", "show"]
+__all__ = ["__version__", "expand", "generate_collision", "lint", "load", "mesh_inertia", "show"]
 
 
 def generate_collision(robot: "Robot", method: str = "decimate", **options):
@@ -70,6 +71,42 @@ def load(path: str, args: Mapping[str, str] | None = None,
 
     expanded = expand(path, args, package_paths=package_paths)
     return parse_urdf(expanded.xml, expanded.source, expanded.files)
+
+
+def mesh_inertia(path: str, args: Mapping[str, str] | None = None, *, source: str | None = None,
+                 package_paths: Sequence[str] = ()) -> "InertiaTable":
+    """Declared against mesh-derived mass, centre of mass and principal moments per link.
+
+    The MeshLab "Compute Geometric Measures" step for every link at once: each link's
+    geometry (collision by default, or `source="visual"`) at uniform density, scaled to the
+    declared mass, in the link frame.
+
+    Args:
+        path: the description file (xacro or URDF).
+        args: xacro arguments.
+        source: "collision" or "visual" (default: the config's, else collision).
+        package_paths: folders searched for ROS packages first.
+
+    Returns:
+        An `InertiaTable` (renders as a table in Jupyter; `.rows`, `.to_dict()`).
+    """
+    import dataclasses
+
+    from robotdesc.config import discover_config
+    from robotdesc.inertia.table import InertiaTable, inertia_table
+    from robotdesc.mesh.context import MeshContext
+    from robotdesc.model.parse import parse_urdf
+
+    config = discover_config(path)
+    expanded = expand(path, {**dict(config.args), **dict(args or {})},
+                      package_paths=package_paths)
+    robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
+    settings = config.meshes if source is None else dataclasses.replace(
+        config.meshes, inertia_source=source)
+    meshes = MeshContext.for_file(robot, expanded.source, settings, tuple(package_paths),
+                                  tuple(config.packages))
+    return InertiaTable(expanded.source, settings.inertia_source,
+                        tuple(inertia_table(robot, meshes)))
 
 
 def lint(path: str, args: Mapping[str, str] | None = None, *,

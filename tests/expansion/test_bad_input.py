@@ -91,3 +91,18 @@ def test_unknown_macro_through_xacro_call_is_named(tmp_path):
         expand_file(source, options=ExpandOptions(use_cache=False))
     assert caught.value.span.line == 3
     assert "missing_macro" in caught.value.message and "undefined" in caught.value.message
+
+
+@pytest.mark.parametrize("name, error, line, words", CASES, ids=[c[0] for c in CASES])
+def test_cli_exits_2_naming_file_and_line_without_a_traceback(name, error, line, words, tmp_path):
+    import subprocess
+    import sys
+
+    src = str(Path(__file__).resolve().parents[2] / "src")
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [src, os.environ.get("PYTHONPATH")]))}
+    done = subprocess.run([sys.executable, "-m", "robotdesc", "lint", "--no-cache", str(BAD / name)],
+                          capture_output=True, text=True, cwd=tmp_path, timeout=120, env=env)
+    assert done.returncode == 2, done.stdout + done.stderr
+    assert f"{name}:{line}" in done.stderr
+    assert "Traceback" not in done.stdout + done.stderr
+    assert not (tmp_path / "ESCAPE_MARKER").exists()

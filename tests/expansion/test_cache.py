@@ -70,3 +70,15 @@ def test_corrupt_entry_is_a_miss(workspace, worker_runs, tmp_path):
         entry.write_text("{not json")
     expand_file(robot, options=options)
     assert len(worker_runs) == 2
+
+
+def test_a_new_xacro_version_is_a_miss(workspace, worker_runs, tmp_path, monkeypatch):
+    from robotdesc.expansion import cache
+
+    options = ExpandOptions(cache_dir=str(tmp_path / "cache"))
+    robot = workspace / "robot_pkg" / "urdf" / "robot.urdf.xacro"
+    expand_file(robot, options=options)
+    real = cache._versions
+    monkeypatch.setattr(cache, "_versions", lambda: {**real(), "xacro": "99.0.0"})
+    expand_file(robot, options=options)
+    assert len(worker_runs) == 2

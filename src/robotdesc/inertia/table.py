@@ -51,6 +51,37 @@ class InertiaRow:
         return {k: (list(v) if isinstance(v, tuple) else v) for k, v in vars(self).items()}
 
 
+@dataclass(frozen=True)
+class InertiaTable:
+    """Declared against mesh-derived inertia for every link (what `robotdesc.mesh_inertia`
+    returns): a table in Jupyter, plain text elsewhere, `to_dict()` for JSON.
+
+    Attributes:
+        target: the description file.
+        source: the geometry measured ("collision" or "visual").
+        rows: one per link that declares an inertial or has geometry.
+    """
+
+    target: str
+    source: str
+    rows: tuple[InertiaRow, ...]
+
+    def row(self, link: str) -> InertiaRow | None:
+        return next((row for row in self.rows if row.link == link), None)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"target": self.target, "source": self.source,
+                "links": [row.to_json() for row in self.rows]}
+
+    def __str__(self) -> str:
+        return render_table(list(self.rows))
+
+    def _repr_html_(self) -> str:
+        from robotdesc.report.html import inertia_rows_html
+
+        return inertia_rows_html(self.rows)
+
+
 def inertia_table(robot: Robot, meshes: MeshContext, tolerance: float = 0.5) -> list[InertiaRow]:
     """One row per link that declares an inertial or has geometry."""
     from robotdesc.inertia.tensor import principal_moments
