@@ -71,7 +71,13 @@ def render_lines(results: Sequence, failures: Sequence = (), *, cwd: str | None 
         show_source: include the source line and caret under each diagnostic.
     """
     cache = SourceCache()
-    show = lambda path: display_path(path, cwd)  # noqa: E731
+    shown: dict[str, str] = {}
+
+    def show(path: str) -> str:
+        if path not in shown:
+            shown[path] = display_path(path, cwd)
+        return shown[path]
+
     lines: list[Line] = []
     for result in results:
         variant = variant_label(getattr(result, "variant", ()))
@@ -189,10 +195,22 @@ def _context_lines(span: Span | None, stack: Iterable[Span], show: Callable[[str
         lines.append([(f"{gutter} |", "blue")])
         lines.append([(f"{span.line} | ", "blue"), (source.rstrip().expandtabs(4), "")])
         lines.append([(f"{gutter} | ", "blue"), (" " * start, ""), ("^" * length, "bold red")])
-    for site in stack:
+    for site, repeats in _runs(stack):
+        again = f" ({repeats} nested calls from this line)" if repeats > 1 else ""
         lines.append([(f"{gutter} = ", "blue"),
-                      (f"in macro called from {_location(site, show, site.path)}", "")])
+                      (f"in macro called from {_location(site, show, site.path)}{again}", "")])
     return lines
+
+
+def _runs(stack: Iterable[Span]) -> list[tuple[Span, int]]:
+    """Consecutive identical call sites (a recursive macro) as (site, count)."""
+    runs: list[tuple[Span, int]] = []
+    for site in stack:
+        if runs and runs[-1][0] == site:
+            runs[-1] = (site, runs[-1][1] + 1)
+        else:
+            runs.append((site, 1))
+    return runs
 
 
 def _underline(source: str, col: int) -> tuple[int, int]:

@@ -11,6 +11,8 @@ collision counts are sums, so the result does not depend on the number of worker
 
 from __future__ import annotations
 
+import dataclasses
+
 import enum
 import logging
 import multiprocessing
@@ -131,11 +133,52 @@ def prepare_scene(robot: Robot, mesh_path: MeshPath, convex: bool = False) -> Pr
 
 
 def default_collisions(prepared: PreparedScene) -> list[tuple[str, str]]:
-    """Non-adjacent link pairs that collide at the default configuration."""
+    """Non-adjacent link pairs that collide at the default configuration.
+
+    Pairs whose bounding spheres are apart at that configuration are pruned first (a broad
+    phase), so a robot with hundreds of links checks only the pairs that are near.
+    """
     robot = prepared.kinematics.robot
     q = prepared.kinematics.configuration(default_configuration(robot))
-    touching = CollisionScene(prepared.spec).colliding(q)
-    return [pair for pair, hit in zip(prepared.spec.pairs, touching) if hit]
+    near = _near_pairs(prepared.spec, q)
+    spec = dataclasses.replace(prepared.spec, pairs=near)
+    touching = CollisionScene(spec).colliding(q) if near else []
+    return [pair for pair, hit in zip(near, touching) if hit]
+
+
+def _near_pairs(spec: SceneSpec, q) -> tuple[tuple[str, str], ...]:
+    """The pairs of `spec.pairs` whose links' bounding spheres overlap at configuration q."""
+    import numpy as np
+    import pinocchio as pin
+
+    model = pin.buildModelFromXML(spec.urdf, False)
+    data = model.createData()
+    pin.framesForwardKinematics(model, data, q)
+    spheres: dict[str, list[tuple[np.ndarray, float]]] = {}
+    for shape in spec.shapes:
+        points = shape.local_points()
+        low, high = points.min(axis=0), points.max(axis=0)
+        centre = (low + high) / 2.0
+        radius = float(np.linalg.norm(points - centre, axis=1).max())
+        in_link = shape.placement[:3, :3] @ centre + shape.placement[:3, 3]
+        frame = data.oMf[model.getFrameId(shape.link, pin.BODY)]
+        spheres.setdefault(shape.link, []).append(
+            (frame.rotation @ in_link + frame.translation, radius))
+    names = sorted(spheres)
+    index = {name: k for k, name in enumerate(names)}
+    centres = np.zeros((len(names), 3))
+    radii = np.zeros(len(names))
+    for name, parts in spheres.items():
+        points = np.array([c for c, _ in parts])
+        centre = (points.min(axis=0) + points.max(axis=0)) / 2.0
+        centres[index[name]] = centre
+        radii[index[name]] = max(float(np.linalg.norm(c - centre)) + r for c, r in parts)
+    if not spec.pairs:
+        return ()
+    first = np.array([index[a] for a, _ in spec.pairs])
+    second = np.array([index[b] for _, b in spec.pairs])
+    gap = np.linalg.norm(centres[first] - centres[second], axis=1) - radii[first] - radii[second]
+    return tuple(pair for pair, apart in zip(spec.pairs, gap > 1e-9) if not apart)
 
 
 def compute_matrix(robot: Robot, mesh_path: MeshPath, *, samples: int = 10000, seed: int = 0,
