@@ -43,9 +43,10 @@ class CollisionScene:
         self.data = self.model.createData()
         self.geometry = pin.GeometryModel()
         by_link: dict[str, list[int]] = {}
+        frames = list(self.model.frames)  # one conversion: each `model.frames` access copies
         for shape in spec.shapes:
             frame_id = self.model.getFrameId(shape.link, pin.BODY)
-            frame = self.model.frames[frame_id]
+            frame = frames[frame_id]
             placement = frame.placement * pin.SE3(shape.placement[:3, :3].copy(),
                                                   shape.placement[:3, 3].copy())
             obj = pin.GeometryObject(f"{shape.link}/{shape.index}", frame.parentJoint, frame_id,

@@ -11,13 +11,13 @@ collision counts are sums, so the result does not depend on the number of worker
 
 from __future__ import annotations
 
-import dataclasses
 
 import enum
 import logging
 import multiprocessing
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -135,35 +135,63 @@ def prepare_scene(robot: Robot, mesh_path: MeshPath, convex: bool = False) -> Pr
 def default_collisions(prepared: PreparedScene) -> list[tuple[str, str]]:
     """Non-adjacent link pairs that collide at the default configuration.
 
-    Pairs whose bounding spheres are apart at that configuration are pruned first (a broad
-    phase), so a robot with hundreds of links checks only the pairs that are near.
+    A broad phase first prunes the pairs whose bounding spheres are apart; coal then checks
+    the shapes of the remaining pairs. Link placements come from robotdesc's own forward
+    kinematics: a Pinocchio `Data` for a robot with hundreds of joints takes seconds to
+    allocate, and one configuration does not need it.
     """
+    import coal
+
+    from robotdesc.kinematics.geometry import to_coal
+    from robotdesc.view.forward import poses_at
+
+    spec = prepared.spec
     robot = prepared.kinematics.robot
-    q = prepared.kinematics.configuration(default_configuration(robot))
-    near = _near_pairs(prepared.spec, q)
-    spec = dataclasses.replace(prepared.spec, pairs=near)
-    touching = CollisionScene(spec).colliding(q) if near else []
-    return [pair for pair, hit in zip(near, touching) if hit]
+    poses = poses_at(robot, default_configuration(robot))
+    world = [poses[shape.link] @ shape.placement for shape in spec.shapes]
+    near = _near_pairs(spec, world)
+    by_link: dict[str, list[int]] = {}
+    for number, shape in enumerate(spec.shapes):
+        by_link.setdefault(shape.link, []).append(number)
+    objects: dict[int, tuple[Any, Any]] = {}
+
+    def placed(number: int) -> tuple[Any, Any]:
+        if number not in objects:
+            matrix = world[number]
+            transform = coal.Transform3s(np.ascontiguousarray(matrix[:3, :3]),
+                                         np.ascontiguousarray(matrix[:3, 3]))
+            objects[number] = (to_coal(spec.shapes[number], spec.convex), transform)
+        return objects[number]
+
+    request = coal.CollisionRequest()
+    colliding = []
+    for first, second in near:
+        if any(_touch(placed(a), placed(b), request)
+               for a in by_link[first] for b in by_link[second]):
+            colliding.append((first, second))
+    return colliding
 
 
-def _near_pairs(spec: SceneSpec, q) -> tuple[tuple[str, str], ...]:
-    """The pairs of `spec.pairs` whose links' bounding spheres overlap at configuration q."""
-    import numpy as np
-    import pinocchio as pin
+def _touch(a: tuple[Any, Any], b: tuple[Any, Any], request: Any) -> bool:
+    import coal
 
-    model = pin.buildModelFromXML(spec.urdf, False)
-    data = model.createData()
-    pin.framesForwardKinematics(model, data, q)
+    result = coal.CollisionResult()
+    coal.collide(a[0], a[1], b[0], b[1], request, result)
+    return result.isCollision()
+
+
+def _near_pairs(spec: SceneSpec, world: list[np.ndarray]) -> tuple[tuple[str, str], ...]:
+    """The pairs of `spec.pairs` whose links' bounding spheres overlap, given each shape's
+    world transform (4x4, in the order of `spec.shapes`)."""
     spheres: dict[str, list[tuple[np.ndarray, float]]] = {}
-    for shape in spec.shapes:
+    for shape, matrix in zip(spec.shapes, world):
         points = shape.local_points()
         low, high = points.min(axis=0), points.max(axis=0)
         centre = (low + high) / 2.0
         radius = float(np.linalg.norm(points - centre, axis=1).max())
-        in_link = shape.placement[:3, :3] @ centre + shape.placement[:3, 3]
-        frame = data.oMf[model.getFrameId(shape.link, pin.BODY)]
-        spheres.setdefault(shape.link, []).append(
-            (frame.rotation @ in_link + frame.translation, radius))
+        spheres.setdefault(shape.link, []).append((matrix[:3, :3] @ centre + matrix[:3, 3], radius))
+    if not spec.pairs:
+        return ()
     names = sorted(spheres)
     index = {name: k for k, name in enumerate(names)}
     centres = np.zeros((len(names), 3))
@@ -173,12 +201,10 @@ def _near_pairs(spec: SceneSpec, q) -> tuple[tuple[str, str], ...]:
         centre = (points.min(axis=0) + points.max(axis=0)) / 2.0
         centres[index[name]] = centre
         radii[index[name]] = max(float(np.linalg.norm(c - centre)) + r for c, r in parts)
-    if not spec.pairs:
-        return ()
     first = np.array([index[a] for a, _ in spec.pairs])
     second = np.array([index[b] for _, b in spec.pairs])
     gap = np.linalg.norm(centres[first] - centres[second], axis=1) - radii[first] - radii[second]
-    return tuple(pair for pair, apart in zip(spec.pairs, gap > 1e-9) if not apart)
+    return tuple(pair for pair, apart in zip(spec.pairs, gap.tolist()) if apart <= 1e-9)
 
 
 def compute_matrix(robot: Robot, mesh_path: MeshPath, *, samples: int = 10000, seed: int = 0,
