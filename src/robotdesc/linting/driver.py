@@ -9,6 +9,7 @@ import dataclasses
 import fnmatch
 import logging
 import os
+from pathlib import Path
 from typing import Any, Iterable, Mapping, Sequence
 
 from robotdesc.config import Config, discover_config
@@ -72,7 +73,7 @@ def lint_file(path: str, config: Config | None = None, *,
                               else rule.default_options(), expansion=facts,
                               meshes=meshes if "meshes" in rule.needs else None)
         try:
-            findings = list(run_rule(rule, robot, context))
+            findings = _run_cached(rule, robot, context, expanded.xml, options)
         except RobotdescError:
             raise
         except Exception as exc:  # a crashing rule is a bug: report it, naming the rule
@@ -98,6 +99,38 @@ def lint_file(path: str, config: Config | None = None, *,
     return LintResult(target=target, diagnostics=tuple(sorted(kept, key=Diagnostic.sort_key)),
                       expanded=expanded, robot=robot, suppressed=len(outcome.suppressed),
                       config_path=config.path, rules_run=tuple(r.code for r in rules))
+
+
+def _run_cached(rule: Any, robot: Any, context: Any, document: bytes, options: Any) -> list:
+    """Run one rule; the findings of expensive rules come from the rule cache when valid."""
+    from robotdesc.linting import rule_cache
+    from robotdesc.rules.registry import run_rule
+
+    if not (options.use_cache and rule_cache.is_cached(rule)):
+        return list(run_rule(rule, robot, context))
+    from robotdesc.cache_dir import default_cache_dir
+
+    folder = Path(options.cache_dir) if options.cache_dir else default_cache_dir()
+    key = rule_cache.rule_key(rule, context.options, document, _mesh_files(robot, context))
+    found = rule_cache.load(folder, key)
+    if found is None:
+        found = list(run_rule(rule, robot, context))
+        rule_cache.store(folder, key, found)
+    return found
+
+
+def _mesh_files(robot: Any, context: Any) -> list[str]:
+    """The resolved files of every `<mesh>` (for rules that read meshes)."""
+    if context.meshes is None:
+        return []
+    paths = []
+    for link in robot.links:
+        for element in (*link.visuals, *link.collisions):
+            ref = element.geometry
+            if ref is not None and hasattr(ref, "filename"):
+                path = context.meshes.lookup(ref).resolution.path
+                paths.append(path or ref.filename)
+    return paths
 
 
 def _mesh_context(rules: Sequence[Any], robot: Any, target: str, config: Config,
