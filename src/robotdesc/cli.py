@@ -416,26 +416,15 @@ def _write_input_error(stream: Any, error: Any, target: str | None) -> None:
 
 
 def _write_atomically(path: str, data: bytes) -> None:
-    """Write `data` to `path` through a temporary file in the same folder and a rename."""
-    import tempfile
-
+    """Write `data` to `path` atomically; a failure is an input error naming the file."""
+    from robotdesc.atomic import write_atomically
     from robotdesc.errors import InputError
     from robotdesc.source import Span
 
-    folder = os.path.dirname(os.path.abspath(path))
     try:
-        handle, temporary = tempfile.mkstemp(prefix=".robotdesc-", dir=folder)
+        write_atomically(path, data)
     except OSError as exc:
         raise InputError(f"cannot write: {exc.strerror}", Span(path)) from None
-    try:
-        with os.fdopen(handle, "wb") as out:
-            out.write(data)
-        os.replace(temporary, path)
-    except OSError as exc:
-        raise InputError(f"cannot write: {exc.strerror}", Span(path)) from None
-    finally:
-        if os.path.exists(temporary):
-            os.unlink(temporary)
 
 
 def _same_file(a: str, b: str) -> bool:

@@ -12,12 +12,12 @@ import io
 import json
 import logging
 import os
-import tempfile
 from dataclasses import fields
 from pathlib import Path
 
 import numpy as np
 
+from robotdesc.atomic import write_atomically
 from robotdesc.collision.result import Finding, LinkOutcome, LinkReport, MeshPart, PrimitivePart
 from robotdesc.model.elements import Box, Capsule, Cylinder, Pose, Sphere
 
@@ -74,11 +74,7 @@ class CollisionCache:
         np.savez(buffer, **arrays)
         path = self._path(outcome.key)
         try:
-            path.parent.mkdir(parents=True, exist_ok=True)
-            handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=".tmp-")
-            with os.fdopen(handle, "wb") as stream:
-                stream.write(buffer.getvalue())
-            os.replace(temporary, path)
+            write_atomically(path, buffer.getvalue())
         except OSError as error:
             log.warning("collision cache not written to %s: %s", self.root, error)
 

@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import os
 import re
-import tempfile
 
 from lxml import etree
 
@@ -28,6 +27,7 @@ from robotdesc.collision.manifest import (
     sha256_file,
 )
 from robotdesc.collision.result import CollisionResult, MeshPart, PrimitivePart
+from robotdesc.atomic import write_atomically
 from robotdesc.collision.stl import stl_bytes
 from robotdesc.errors import InputError
 from robotdesc.model.elements import Box, Capsule, Cylinder, Sphere
@@ -103,7 +103,7 @@ def write_outputs(result: CollisionResult, urdf_xml: bytes, out_dir: str, *,
     for name, data in sorted(files.items()):
         path = os.path.join(out_dir, name)
         if sha256_file(path) != sha256_bytes(data):
-            _write_atomically(path, data)
+            write_atomically(path, data)
             written.append(path)
     for name, digest in old.files.items():  # our own files that are no longer produced
         path = os.path.join(out_dir, name)
@@ -116,7 +116,7 @@ def write_outputs(result: CollisionResult, urdf_xml: bytes, out_dir: str, *,
                for o in result.outcomes if o.written},
         source=os.path.relpath(result.robot.source, out_dir) if result.robot.source else "",
         parameters=result.options.key_fields())
-    _write_atomically(os.path.join(out_dir, MANIFEST_NAME), manifest.to_json())
+    write_atomically(os.path.join(out_dir, MANIFEST_NAME), manifest.to_json())
     return written
 
 
@@ -199,19 +199,6 @@ def _package_prefix(out_dir: str) -> str | None:
     relative = os.path.relpath(os.path.realpath(out_dir), os.path.realpath(root))
     relative = "" if relative == "." else relative.replace(os.sep, "/") + "/"
     return f"package://{name}/{relative}"
-
-
-def _write_atomically(path: str, data: bytes) -> None:
-    folder = os.path.dirname(path)
-    os.makedirs(folder, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(prefix=".robotdesc-", dir=folder)
-    try:
-        with os.fdopen(handle, "wb") as stream:
-            stream.write(data)
-        os.replace(temporary, path)
-    finally:
-        if os.path.exists(temporary):
-            os.unlink(temporary)
 
 
 def _safe(name: str) -> str:

@@ -12,11 +12,10 @@ import dataclasses
 import hashlib
 import json
 import logging
-import os
 import sys
-import tempfile
 from pathlib import Path
 
+from robotdesc.atomic import write_atomically
 from robotdesc.expansion.result import Expanded, ResolvedPackage
 from robotdesc.rules.registry import MacroRecursion
 from robotdesc.source import Span
@@ -89,11 +88,7 @@ def store(cache_dir: Path, key: str, expanded: Expanded) -> None:
     record = {"inputs": inputs, "expanded": _encode(expanded)}
     entry = _entry_path(cache_dir, key)
     try:
-        entry.parent.mkdir(parents=True, exist_ok=True)
-        fd, temp = tempfile.mkstemp(dir=entry.parent, suffix=".tmp")
-        with os.fdopen(fd, "w", encoding="utf-8") as stream:
-            json.dump(record, stream)
-        os.replace(temp, entry)
+        write_atomically(entry, json.dumps(record).encode("utf-8"))
     except OSError as exc:
         log.warning("expansion cache: cannot write %s (%s)", entry, exc)
 

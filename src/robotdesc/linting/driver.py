@@ -47,7 +47,7 @@ def lint_file(path: str, config: Config | None = None, *,
     """
     from robotdesc.expansion import ExpandOptions, expand_file
     from robotdesc.model.parse import parse_urdf
-    from robotdesc.rules.registry import ExpansionFacts, RuleContext, all_rules, run_rule
+    from robotdesc.rules.registry import ExpansionFacts, RuleContext, all_rules
 
     target = os.path.abspath(path)
     config = config if config is not None else discover_config(target)

@@ -14,10 +14,10 @@ import hashlib
 import json
 import logging
 import os
-import tempfile
 from pathlib import Path
 from typing import Any, Iterable
 
+from robotdesc.atomic import write_atomically
 from robotdesc.diagnostics import Finding
 from robotdesc.source import Provenance, Span
 
@@ -72,11 +72,8 @@ def load(cache_dir: Path, key: str) -> list[Finding] | None:
 def store(cache_dir: Path, key: str, findings: list[Finding]) -> None:
     folder = cache_dir / "rules"
     try:
-        folder.mkdir(parents=True, exist_ok=True)
-        fd, temp = tempfile.mkstemp(dir=folder, suffix=".tmp")
-        with os.fdopen(fd, "w", encoding="utf-8") as stream:
-            json.dump([_record(f) for f in findings], stream)
-        os.replace(temp, folder / f"{key}.json")
+        write_atomically(folder / f"{key}.json",
+                         json.dumps([_record(f) for f in findings]).encode("utf-8"))
     except OSError as exc:
         log.warning("rule cache: cannot write in %s (%s)", folder, exc)
 

@@ -20,11 +20,11 @@ import json
 import logging
 import os
 import stat
-import tempfile
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
+from robotdesc.atomic import write_atomically
 from robotdesc.mesh.errors import MeshError, MeshErrorKind
 from robotdesc.mesh.properties import MassProperties
 from robotdesc.mesh.records import MassMethod, MeshHealth, MeshSummary
@@ -119,17 +119,7 @@ class MeshCache:
 
     def _write(self, target: str, data: Any) -> None:
         try:
-            folder = os.path.dirname(target)
-            os.makedirs(folder, exist_ok=True)
-            handle, temporary = tempfile.mkstemp(dir=folder, prefix=".tmp-",
-                                                 suffix=".json")
-            try:
-                with os.fdopen(handle, "w", encoding="utf-8") as stream:
-                    json.dump(data, stream, separators=(",", ":"))
-                os.replace(temporary, target)
-            except BaseException:
-                os.unlink(temporary)
-                raise
+            write_atomically(target, json.dumps(data, separators=(",", ":")).encode("utf-8"))
         except OSError as error:
             if not self._write_failed:
                 log.warning("mesh cache not written to %s: %s", self.directory, error)

@@ -12,7 +12,6 @@ Links without geometry are judged by their written inertia (nothing to compare w
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Any, Literal
 
