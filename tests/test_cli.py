@@ -11,10 +11,10 @@ import json
 import os
 import subprocess
 import sys
-import sysconfig
 from pathlib import Path
 
 import pytest
+from support import example_robot_urdfs
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -260,11 +260,6 @@ def test_verbose_logs_to_stderr(project: Path) -> None:
     write(project / "clean.urdf", CLEAN)
     proc = run("lint", "clean.urdf", "--verbose", cwd=project)
     assert proc.returncode == 0 and "robotdesc: linting clean.urdf" in proc.stderr
-
-
-def example_robot_urdfs() -> list[Path]:
-    root = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix/share/example-robot-data/robots"
-    return sorted(root.rglob("*.urdf")) if root.is_dir() else []
 
 
 def test_every_example_robot_data_urdf_lints_without_internal_error() -> None:

@@ -3,11 +3,11 @@ example-robot-data's meshes (tests that need them skip when it is not installed)
 
 from __future__ import annotations
 
-import sysconfig
 from pathlib import Path
 
 import numpy as np
 import pytest
+from support import example_robot_data_dir
 
 from .builders import box_triangles
 
@@ -20,7 +20,7 @@ def box_soup() -> np.ndarray:
 @pytest.fixture(scope="session")
 def robots_dir() -> Path:
     """example-robot-data's robots/ directory; skips the test when it is not installed."""
-    root = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix/share/example-robot-data/robots"
-    if not root.is_dir():
+    root = example_robot_data_dir()
+    if root is None:
         pytest.skip("example-robot-data is not installed")
     return root

@@ -4,28 +4,18 @@ problems in those files are found where they are."""
 from __future__ import annotations
 
 from collections import Counter
-from importlib.metadata import PackageNotFoundError, distribution
 from pathlib import Path
 
 import pytest
+from support import example_robot_data_dir, example_robot_urdfs
 
 from robotdesc.diagnostics import Finding
 from robotdesc.model.parse import parse_urdf
 from robotdesc.rules.registry import RuleContext, all_rules, run_rule
 
 
-def _robots_dir() -> Path | None:
-    try:
-        root = distribution("example-robot-data").locate_file(
-            "cmeel.prefix/share/example-robot-data/robots")
-    except PackageNotFoundError:
-        return None
-    path = Path(str(root))
-    return path if path.is_dir() else None
-
-
-ROBOTS = _robots_dir()
-URDFS = sorted(ROBOTS.rglob("*.urdf")) if ROBOTS else []
+ROBOTS = example_robot_data_dir()
+URDFS = example_robot_urdfs()
 pytestmark = pytest.mark.skipif(not URDFS, reason="example-robot-data is not installed")
 
 
