@@ -163,10 +163,10 @@ def _run_lint(ns: argparse.Namespace) -> int:
         raise UsageError("--statistics works with --format text or json")
     if ns.jobs < 0:
         raise UsageError("--jobs must be 0 (one per CPU) or positive")
-    paths, args = _split_inputs(ns.inputs)
+    paths, args = split_inputs(ns.inputs)
     select = _selectors(ns.select, "--select") or None
     ignore = _selectors(ns.ignore, "--ignore")
-    options = _expand_options(ns)
+    options = expand_options(ns)
     explicit = load_config(ns.config) if ns.config else None
 
     targets, failures = [], []
@@ -222,7 +222,7 @@ def _apply_baseline(ns: argparse.Namespace, results: list) -> list:
     from robotdesc.linting.baseline import apply_baseline, read_baseline, render_baseline
 
     if ns.write_baseline:
-        _write_atomically(ns.write_baseline, render_baseline(results, ns.write_baseline)
+        write_output(ns.write_baseline, render_baseline(results, ns.write_baseline)
                           .encode("utf-8"))
         count = sum(len(r.diagnostics) for r in results)
         sys.stderr.write(f"robotdesc: wrote {count} finding(s) to {ns.write_baseline}\n")
@@ -246,13 +246,13 @@ def _run_expand(ns: argparse.Namespace) -> int:
     from robotdesc.model.write import urdf_text
     from robotdesc.source import Span
 
-    paths, args = _split_inputs(ns.inputs)
+    paths, args = split_inputs(ns.inputs)
     if len(paths) != 1:
         raise UsageError(f"expand takes one file, got {len(paths)}: {' '.join(paths) or '-'}")
     source = paths[0]
     config = load_config(ns.config) if ns.config else discover_config(source)
-    options = _expand_options(ns, config.packages)
-    if ns.output and _same_file(ns.output, source):
+    options = expand_options(ns, config.packages)
+    if ns.output and same_file(ns.output, source):
         raise UsageError("refusing to overwrite the input file; choose another -o", Span(source))
     expanded = expand_file(source, {**dict(config.args), **args}, options=options)
     urdf = urdf_text(expanded.xml, expanded.source)
@@ -260,10 +260,10 @@ def _run_expand(ns: argparse.Namespace) -> int:
         sys.stdout.buffer.write(urdf)
         sys.stdout.flush()
         return EXIT_OK
-    if any(_same_file(ns.output, read) for read in expanded.files_read):
+    if any(same_file(ns.output, read) for read in expanded.files_read):
         raise UsageError("refusing to overwrite a file the expansion read; choose another -o",
                          Span(ns.output))
-    _write_atomically(ns.output, urdf)
+    write_output(ns.output, urdf)
     log.info("wrote %s (%d bytes)", ns.output, len(urdf))
     return EXIT_OK
 
@@ -315,7 +315,7 @@ def rule_help(rule: Any) -> str:
 # --- helpers ------------------------------------------------------------------------------
 
 
-def _split_inputs(inputs: Sequence[str]) -> tuple[list[str], dict[str, str]]:
+def split_inputs(inputs: Sequence[str]) -> tuple[list[str], dict[str, str]]:
     """Separate paths from `name:=value` xacro arguments."""
     from robotdesc.errors import UsageError
 
@@ -347,7 +347,7 @@ def _selectors(values: Sequence[str], flag: str) -> list[str]:
     return selectors
 
 
-def _expand_options(ns: argparse.Namespace, package_map: Sequence[tuple[str, str]] = ()) -> Any:
+def expand_options(ns: argparse.Namespace, package_map: Sequence[tuple[str, str]] = ()) -> Any:
     from robotdesc.expansion import ExpandOptions
 
     if ns.timeout <= 0:
@@ -370,7 +370,7 @@ def _write_report(ns: argparse.Namespace, results: list, failures: list,
 
         write_text(sys.stdout, results, failures, colour=_use_colour(sys.stdout))
     elif ns.output_file:
-        _write_atomically(ns.output_file, text.encode("utf-8"))
+        write_output(ns.output_file, text.encode("utf-8"))
     else:
         sys.stdout.write(text)
 
@@ -415,7 +415,7 @@ def _write_input_error(stream: Any, error: Any, target: str | None) -> None:
     stream.write(render_failure(LintFailure(target or "robotdesc", error)))
 
 
-def _write_atomically(path: str, data: bytes) -> None:
+def write_output(path: str, data: bytes) -> None:
     """Write `data` to `path` atomically; a failure is an input error naming the file."""
     from robotdesc.atomic import write_atomically
     from robotdesc.errors import InputError
@@ -427,7 +427,7 @@ def _write_atomically(path: str, data: bytes) -> None:
         raise InputError(f"cannot write: {exc.strerror}", Span(path)) from None
 
 
-def _same_file(a: str, b: str) -> bool:
+def same_file(a: str, b: str) -> bool:
     return os.path.realpath(a) == os.path.realpath(b)
 
 

@@ -64,7 +64,7 @@ def run(ns: argparse.Namespace) -> int:
     import os
     from dataclasses import replace
 
-    from robotdesc.cli import EXIT_FINDINGS, EXIT_OK, _expand_options, _split_inputs
+    from robotdesc.cli import EXIT_FINDINGS, EXIT_OK, expand_options, split_inputs
     from robotdesc.collision.limits import ENGINE_LIMITS
     from robotdesc.collision.options import CollisionOptions
     from robotdesc.config import discover_config, load_config
@@ -72,7 +72,7 @@ def run(ns: argparse.Namespace) -> int:
     from robotdesc.expansion import expand_file
     from robotdesc.model.parse import parse_urdf
 
-    paths, args = _split_inputs(ns.inputs)
+    paths, args = split_inputs(ns.inputs)
     if len(paths) != 1:
         raise UsageError(f"collision takes one file, got {len(paths)}")
     if not ns.out and not ns.dry_run:
@@ -95,7 +95,7 @@ def run(ns: argparse.Namespace) -> int:
         raise UsageError("--jobs must be at least 1")
     source = paths[0]
     config = load_config(ns.config) if ns.config else discover_config(source)
-    expand_options = _expand_options(ns, config.packages)
+    expand_options = expand_options(ns, config.packages)
     expanded = expand_file(source, {**dict(config.args), **args}, options=expand_options)
     robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
     package_paths = expand_options.package_paths

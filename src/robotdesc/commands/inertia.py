@@ -40,7 +40,7 @@ def run_inertia(ns: argparse.Namespace) -> int:
     """The handler: expand, parse, measure, print; exit 0 (2 on unreadable input)."""
     import dataclasses
 
-    from robotdesc.cli import _expand_options, _split_inputs, _write_atomically
+    from robotdesc.cli import expand_options, split_inputs, write_output
     from robotdesc.config import discover_config, load_config
     from robotdesc.errors import UsageError
     from robotdesc.expansion import expand_file
@@ -48,12 +48,12 @@ def run_inertia(ns: argparse.Namespace) -> int:
     from robotdesc.mesh.context import MeshContext
     from robotdesc.model.parse import parse_urdf
 
-    paths, args = _split_inputs(ns.inputs)
+    paths, args = split_inputs(ns.inputs)
     if len(paths) != 1:
         raise UsageError(f"inertia takes one file, got {len(paths)}")
     source = paths[0]
     config = load_config(ns.config) if ns.config else discover_config(source)
-    options = _expand_options(ns, config.packages)
+    options = expand_options(ns, config.packages)
     expanded = expand_file(source, {**dict(config.args), **args}, options=options)
     robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
     settings = config.meshes if not ns.source else dataclasses.replace(
@@ -77,7 +77,7 @@ def run_inertia(ns: argparse.Namespace) -> int:
         from robotdesc.inertia.patch import build_patch
 
         patch = build_patch(suggestions)
-        _write_atomically(ns.write, patch.diff.encode("utf-8"))
+        write_output(ns.write, patch.diff.encode("utf-8"))
         for link, reason in patch.skipped:
             sys.stderr.write(f"robotdesc: not patched: link '{link}': {reason}\n")
         sys.stderr.write(f"robotdesc: wrote {ns.write} ({len(patch.changed)} blocks)\n")

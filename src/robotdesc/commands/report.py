@@ -39,7 +39,7 @@ def run_report(ns: argparse.Namespace) -> int:
     """The handler: lint, gather, render, write."""
     import time
 
-    from robotdesc.cli import _write_atomically
+    from robotdesc.cli import write_output
     from robotdesc.commands.view import load_target
     from robotdesc.config import discover_config, load_config
     from robotdesc.report.html import render_html_report
@@ -55,7 +55,7 @@ def run_report(ns: argparse.Namespace) -> int:
                           max_faces=ns.max_faces, mesh_settings=config.meshes,
                           collision_method=ns.collision, jobs=ns.jobs, view=not ns.no_view)
     page = render_html_report(data).encode("utf-8")
-    _write_atomically(ns.output, page)
+    write_output(ns.output, page)
     sys.stderr.write(f"robotdesc: wrote {ns.output} ({len(page) / 1e6:.2f} MB, "
                      f"{len(result.diagnostics)} findings; "
                      f"{time.perf_counter() - started:.1f} s)\n")

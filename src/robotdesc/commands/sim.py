@@ -43,12 +43,12 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
 
 def run_sim(ns: argparse.Namespace) -> int:
     """The handler: load, settle, time, print; exit 0 pass, 1 fail, 2 input error."""
-    from robotdesc.cli import _expand_options, _split_inputs
+    from robotdesc.cli import expand_options, split_inputs
     from robotdesc.config import discover_config, load_config
     from robotdesc.errors import InputError, UsageError
     from robotdesc.sim.backend import import_mujoco
 
-    paths, args = _split_inputs(ns.inputs)
+    paths, args = split_inputs(ns.inputs)
     if len(paths) != 1:
         raise UsageError(f"sim takes one file, got {len(paths)}")
     if not ns.seconds > 0 or not ns.drop_height >= 0:
@@ -65,7 +65,7 @@ def run_sim(ns: argparse.Namespace) -> int:
 
     source = paths[0]
     config = load_config(ns.config) if ns.config else discover_config(source)
-    expand_options = _expand_options(ns, config.packages)
+    expand_options = expand_options(ns, config.packages)
     loaded = load_sim_input(source, {**dict(config.args), **args}, expand_options)
     hold = HoldOptions(mode="passive" if ns.passive else "position")
     options = SimOptions(settle=SettleOptions(seconds=ns.seconds, hold=hold),

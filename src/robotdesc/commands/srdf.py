@@ -47,7 +47,7 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
 
 def run_srdf(ns: argparse.Namespace) -> int:
     """The handler: expand, compute the matrix, write SRDF and report; exit 0 (2 on bad input)."""
-    from robotdesc.cli import _same_file, _write_atomically
+    from robotdesc.cli import same_file, write_output
     from robotdesc.commands.info import load_robot
     from robotdesc.errors import UsageError
     from robotdesc.kinematics.optional import import_pinocchio
@@ -58,7 +58,7 @@ def run_srdf(ns: argparse.Namespace) -> int:
         raise UsageError("--samples must be >= 0, --jobs >= 1, --always-fraction in (0, 1]")
     robot, mesh_path, source = load_robot(ns, "srdf")
     for target in (ns.output, ns.report):
-        if target and _same_file(target, source):
+        if target and same_file(target, source):
             raise UsageError(f"refusing to overwrite the input file with {target}")
     matrix = compute_matrix(robot, mesh_path, samples=ns.samples, seed=ns.seed,
                             workers=ns.jobs, always_fraction=ns.always_fraction,
@@ -70,12 +70,12 @@ def run_srdf(ns: argparse.Namespace) -> int:
     srdf = render_srdf(matrix)
     report_path = ns.report or (_report_name(ns.output) if ns.output else None)
     if ns.output:
-        _write_atomically(ns.output, srdf.encode("utf-8"))
+        write_output(ns.output, srdf.encode("utf-8"))
         log.info("wrote %s (%d pairs disabled)", ns.output, len(matrix.disabled()))
     else:
         sys.stdout.write(srdf)
     if report_path:
-        _write_atomically(report_path, render_report(matrix).encode("utf-8"))
+        write_output(report_path, render_report(matrix).encode("utf-8"))
         log.info("wrote %s", report_path)
     return 0
 

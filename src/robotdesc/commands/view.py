@@ -54,21 +54,21 @@ def load_target(ns: argparse.Namespace, lint: bool = True) -> tuple[Any, Any, An
     Raises:
         UsageError: not exactly one file, or the output would overwrite the input.
     """
-    from robotdesc.cli import _expand_options, _same_file, _split_inputs
+    from robotdesc.cli import expand_options, same_file, split_inputs
     from robotdesc.config import discover_config, load_config
     from robotdesc.errors import UsageError
     from robotdesc.source import Span
 
-    paths, args = _split_inputs(ns.inputs)
+    paths, args = split_inputs(ns.inputs)
     if len(paths) != 1:
         raise UsageError(f"{ns.command} takes one file, got {len(paths)}")
     source = paths[0]
-    if _same_file(ns.output, source):
+    if same_file(ns.output, source):
         raise UsageError("refusing to overwrite the input file; choose another -o", Span(source))
     if ns.max_faces is not None and ns.max_faces < 1:
         raise UsageError("--max-faces must be at least 1")
     config = load_config(ns.config) if ns.config else discover_config(source)
-    options = _expand_options(ns, config.packages)
+    options = expand_options(ns, config.packages)
     if lint:
         from robotdesc.linting.driver import lint_file
 
@@ -85,7 +85,7 @@ def run_view(ns: argparse.Namespace) -> int:
     """The handler: lint, build the scene, write the page."""
     import time
 
-    from robotdesc.cli import _write_atomically
+    from robotdesc.cli import write_output
     from robotdesc.errors import UsageError
     from robotdesc.view.forward import parse_assignments
     from robotdesc.view.show import SHOW_OPTIONS, show
@@ -103,7 +103,7 @@ def run_view(ns: argparse.Namespace) -> int:
                 visible=visible,
                 max_faces=ns.max_faces)
     page = view.html().encode("utf-8")
-    _write_atomically(ns.output, page)
+    write_output(ns.output, page)
     doc = view.document
     flagged = sum(1 for link in doc["links"] if link["findings"])
     sys.stderr.write(f"robotdesc: wrote {ns.output} ({len(page) / 1e6:.2f} MB: "
