@@ -22,6 +22,10 @@ def real_mesh(relative: str) -> Path:
 HIP = "solo_description/meshes/stl/solo12/solo12_hip_fe_fl.stl"      # closed, 3078 faces
 LINK1 = "panda_description/meshes/visual/link1.dae"                  # closed, 12516 faces
 FOREARM = "ur_description/meshes/ur5/visual/forearm.dae"               # closed, 21028 faces
+UPPERARM = "ur_description/meshes/ur5/visual/upperarm.dae"             # closed, 29436 faces
+Z1_LINK03 = "z1_description/meshes/collision/z1_Link03.STL"            # closed, 33580 faces
+SO101_HOLDER = "so_arm_description/meshes/so101/base_motor_holder_so101_v1.stl"  # closed, 37540
+Z1_LINK05 = "z1_description/meshes/collision/z1_Link05.STL"  # closed; fast-simplification: 21 %
 UPPER_LEG = "solo_description/meshes/stl/solo12/solo12_upper_leg_left_side.stl"  # open
 
 

@@ -5,8 +5,17 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from collision.conftest import FOREARM, HIP, LINK1, real_mesh
-from robotdesc.collision.decimate import decimate, face_budget, is_closed
+from collision.conftest import (
+    FOREARM,
+    HIP,
+    LINK1,
+    SO101_HOLDER,
+    UPPERARM,
+    Z1_LINK03,
+    Z1_LINK05,
+    real_mesh,
+)
+from robotdesc.collision.decimate import BUDGET_SLACK, decimate, face_budget, is_closed
 from robotdesc.collision.hull import NoVolumeError, contains, convex_hull
 from robotdesc.collision.link import LinkTask, run_link
 from robotdesc.collision.metrics import fidelity
@@ -21,20 +30,52 @@ def _mesh(relative):
     return merge_vertices(load_mesh(real_mesh(relative)).triangles)
 
 
-# Measured bounds (robotdesc 0.1, fast-simplification 0.2.0, manifold3d 3.5.4): a dense
-# mesh keeps 1 % at 2 % of its faces; the 12.5k-face Panda link needs 20 %.
+# The issue's bound: at 2 % of the faces, a dense closed mesh keeps its symmetric Hausdorff
+# distance under 1 % of its diagonal (measured with meshoptimizer 0.2.30a0: UR5 upper arm
+# 0.73 %, z1 link 3 0.33 %, SO-101 motor holder 0.22 %). Coarser meshes need more faces: the
+# 12.5k-face Panda link is at 1.05 % with 2 % and under 1 % with 20 %.
 @pytest.mark.parametrize("relative, ratio, bound", [
-    (FOREARM, 0.02, 1.0), (LINK1, 0.02, 3.5), (LINK1, 0.2, 1.0)])
-def test_decimation_stays_closed_and_within_measured_bounds(relative, ratio, bound):
+    (UPPERARM, 0.02, 1.0), (Z1_LINK03, 0.02, 1.0), (SO101_HOLDER, 0.02, 1.0),
+    (FOREARM, 0.02, 1.2), (LINK1, 0.02, 1.5), (LINK1, 0.2, 1.0)])
+def test_decimation_stays_closed_and_within_bounds(relative, ratio, bound):
     vertices, faces = _mesh(relative)
     assert is_closed(vertices, faces)
     target = face_budget(len(faces), ratio, None, 64)
     result = decimate(vertices, faces, target)
     part = result.part
-    assert len(part.faces) <= target * 1.5
+    assert result.engine == "meshoptimizer" and not result.problems
+    assert len(part.faces) <= target * (1 + BUDGET_SLACK) + 4
     assert is_closed(part.vertices, part.faces)
     measured = fidelity((vertices, faces), (part.vertices, part.faces))
     assert measured.hausdorff_percent < bound
+
+
+def test_a_stalled_engine_falls_back_and_says_so():
+    vertices, faces = _mesh(UPPERARM)
+    target = face_budget(len(faces), 0.02, None, 64)
+    result = decimate(vertices, faces, target, engine="fast-simplification")
+    assert result.engine == "meshoptimizer" and not result.problems
+    assert any("fast-simplification stopped at" in note for note in result.notes)
+    assert len(result.part.faces) <= target * (1 + BUDGET_SLACK) + 4
+
+
+def test_the_default_engine_is_far_more_faithful_than_fast_simplification():
+    """Why meshoptimizer is the default: on this z1 link, fast-simplification reaches the
+    budget (so no fallback runs) with a 21 % Hausdorff distance."""
+    vertices, faces = _mesh(Z1_LINK05)
+    target = face_budget(len(faces), 0.02, None, 64)
+    results = {engine: decimate(vertices, faces, target, engine=engine)
+               for engine in ("meshoptimizer", "fast-simplification")}
+    percent = {engine: fidelity((vertices, faces), (r.part.vertices, r.part.faces))
+               .hausdorff_percent for engine, r in results.items()}
+    assert results["fast-simplification"].engine == "fast-simplification"
+    assert percent["meshoptimizer"] < 1.0 < 10.0 < percent["fast-simplification"]
+
+
+def test_unknown_engine_is_refused():
+    vertices, faces = _mesh(HIP)
+    with pytest.raises(ValueError, match="unknown decimation engine"):
+        decimate(vertices, faces, 100, engine="blender")
 
 
 def test_hull_covers_the_input():

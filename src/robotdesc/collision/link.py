@@ -104,7 +104,7 @@ def _make(method: str, vertices: np.ndarray, faces: np.ndarray,
         return _Made("hull", (convex_hull(vertices),))
     if method == "decimate":
         target = face_budget(len(faces), options.ratio, options.faces, options.min_faces)
-        result = decimate(vertices, faces, target)
+        result = decimate(vertices, faces, target, options.decimator)
         findings = []
         for problem in result.problems:
             severity = "error" if "opened" in problem or "no faces" in problem else "warning"

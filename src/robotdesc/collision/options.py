@@ -9,6 +9,8 @@ from robotdesc.collision.limits import EngineLimits
 #: The methods, in the order `auto` tries them by default (cheapest for an engine first).
 METHODS = ("decimate", "hull", "coacd", "primitive", "auto")
 PRIMITIVE_KINDS = ("box", "cylinder", "sphere", "capsule")
+#: The decimation engines (mirrors robotdesc.collision.decimate.ENGINES, kept import-free).
+DECIMATORS = ("meshoptimizer", "fast-simplification")
 
 
 @dataclass(frozen=True)
@@ -20,6 +22,8 @@ class CollisionOptions:
         ratio: decimate: share of the input's faces to keep (0 < ratio <= 1).
         faces: decimate: face budget per link (overrides `ratio` when set).
         min_faces: decimate: never aim below this many faces.
+        decimator: decimate: the engine tried first, "meshoptimizer" or
+            "fast-simplification" (the other is the fallback; see decimate.py).
         threshold: coacd: concavity threshold (smaller: more, tighter hulls).
         max_hulls: coacd: hull count per link (-1: no limit).
         hull_vertices: coacd: vertices per hull (CoACD simplifies each hull to this).
@@ -41,6 +45,7 @@ class CollisionOptions:
     ratio: float = 0.02
     faces: int | None = None
     min_faces: int = 64
+    decimator: str = "meshoptimizer"
     threshold: float = 0.05
     max_hulls: int = 16
     hull_vertices: int = 64
@@ -67,6 +72,9 @@ class CollisionOptions:
             raise ValueError(f"ratio must be in (0, 1], got {self.ratio}")
         if self.faces is not None and self.faces < 4:
             raise ValueError(f"faces must be at least 4, got {self.faces}")
+        if self.decimator not in DECIMATORS:
+            raise ValueError(f"unknown decimator '{self.decimator}' (choose from "
+                             f"{', '.join(DECIMATORS)})")
         if not 0 < self.threshold <= 1:
             raise ValueError(f"threshold must be in (0, 1], got {self.threshold}")
         if self.max_hulls == 0 or self.max_hulls < -1:

@@ -33,6 +33,10 @@ def register(subparsers, *, common, expansion) -> None:
     parser.add_argument("--ratio", type=float, default=0.02,
                         help="decimate: share of faces kept (default 0.02)")
     parser.add_argument("--faces", type=int, help="decimate: face budget per link")
+    parser.add_argument("--decimator", choices=("meshoptimizer", "fast-simplification"),
+                        default="meshoptimizer",
+                        help="decimate: engine tried first; the other is the fallback "
+                             "(default meshoptimizer)")
     parser.add_argument("--threshold", type=float, default=0.05,
                         help="coacd: concavity threshold (default 0.05)")
     parser.add_argument("--max-hulls", type=int, default=16,
@@ -84,7 +88,8 @@ def run(ns: argparse.Namespace) -> int:
                          max_hull_vertices=ns.limit_hull_vertices or limits.max_hull_vertices)
     try:
         options = CollisionOptions(
-            method=ns.method, ratio=ns.ratio, faces=ns.faces, threshold=ns.threshold,
+            method=ns.method, ratio=ns.ratio, faces=ns.faces, decimator=ns.decimator,
+            threshold=ns.threshold,
             max_hulls=ns.max_hulls, hull_vertices=ns.hull_vertices, seed=ns.seed,
             primitives=tuple(p.strip() for p in ns.primitives.split(",") if p.strip()),
             target_percent=ns.target, source=ns.source, mesh_timeout_s=ns.mesh_timeout,
