@@ -95,10 +95,28 @@ class CollisionOptions:
         return self
 
     def key_fields(self) -> dict:
-        """The parameters that change the generated geometry (the cache and manifest key)."""
+        """The parameters that change the generated geometry or its report (the cache and
+        manifest key): the common ones and those of the method (all of them for auto), so
+        that, say, a new decimation ratio leaves CoACD outputs current."""
         data = asdict(self)
-        for name in ("mesh_timeout_s", "limits"):
-            data.pop(name)
         data["primitives"] = list(self.primitives)
         data["auto_order"] = list(self.auto_order)
-        return data
+        if self.method == "auto":
+            relevant = {name for names in _METHOD_FIELDS.values() for name in names}
+            relevant.add("auto_order")
+        else:
+            relevant = set(_METHOD_FIELDS.get(self.method, ()))
+        return {name: value for name, value in data.items()
+                if name in _COMMON_FIELDS or name in relevant}
+
+
+#: Fields every method's result depends on (seed: CoACD and the fidelity sampling).
+_COMMON_FIELDS = ("method", "seed", "target_percent", "samples", "source")
+#: The fields each method reads.
+_METHOD_FIELDS = {
+    "decimate": ("ratio", "faces", "min_faces", "decimator"),
+    "hull": (),
+    "coacd": ("threshold", "max_hulls", "hull_vertices", "coacd_iterations",
+              "preprocess_resolution"),
+    "primitive": ("primitives",),
+}

@@ -1,0 +1,30 @@
+"""The options' cache/manifest key holds what the method reads, and only that."""
+
+from __future__ import annotations
+
+import pytest
+
+from robotdesc.collision.options import CollisionOptions
+
+
+def test_a_decimation_parameter_leaves_coacd_and_hull_keys_alone():
+    for method in ("coacd", "hull", "primitive"):
+        base = CollisionOptions(method=method)
+        assert base.key_fields() == CollisionOptions(method=method, ratio=0.1,
+                                                     decimator="fast-simplification",
+                                                     faces=500).key_fields()
+
+
+@pytest.mark.parametrize("method, change", [
+    ("decimate", {"ratio": 0.1}), ("decimate", {"decimator": "fast-simplification"}),
+    ("coacd", {"threshold": 0.1}), ("primitive", {"primitives": ("box",)}),
+    ("hull", {"target_percent": 2.0}), ("auto", {"ratio": 0.1}),
+    ("auto", {"auto_order": ("hull",)}), ("coacd", {"seed": 3})])
+def test_a_parameter_the_method_reads_changes_its_key(method, change):
+    base = CollisionOptions(method=method)
+    assert base.key_fields() != CollisionOptions(method=method, **change).key_fields()
+
+
+def test_unknown_decimator_is_a_value_error():
+    with pytest.raises(ValueError, match="unknown decimator"):
+        CollisionOptions(decimator="blender").validated()
