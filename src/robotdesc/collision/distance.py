@@ -9,6 +9,8 @@ run in chunks. KD-trees over triangle centroids prune the pairs without approxim
 
 from __future__ import annotations
 
+from itertools import chain
+
 import numpy as np
 
 #: Point-triangle pairs evaluated per numpy block (bounds the temporaries to ~100 MB).
@@ -25,50 +27,57 @@ def point_triangle_distance(points: np.ndarray, a: np.ndarray, b: np.ndarray,
     Returns:
         (n,) distances. Degenerate triangles (zero area) are measured as their edges.
     """
-    p = np.asarray(points, dtype=np.float64)
-    a, b, c = (np.asarray(x, dtype=np.float64) for x in (a, b, c))
-    ab, ac, ap = b - a, c - a, p - a
-    d1, d2 = _dot(ab, ap), _dot(ac, ap)
-    bp = p - b
-    d3, d4 = _dot(ab, bp), _dot(ac, bp)
-    cp = p - c
-    d5, d6 = _dot(ab, cp), _dot(ac, cp)
-    va, vb, vc = d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2
+    a = np.asarray(a, dtype=np.float64)
+    return _distance_to_triangles(np.asarray(points, dtype=np.float64), a,
+                                  np.asarray(b, dtype=np.float64) - a,
+                                  np.asarray(c, dtype=np.float64) - a)
+
+
+def _distance_to_triangles(p: np.ndarray, a: np.ndarray, ab: np.ndarray,
+                           ac: np.ndarray) -> np.ndarray:
+    """Pairwise point-triangle distances, the triangle given by a corner and two edges.
+
+    The point is projected on the triangle's plane (barycentric coordinates by the 2x2
+    normal equations); inside, the distance is the projection's; outside (or degenerate),
+    it is the nearest of the three edges.
+    """
+    ap = p - a
+    uu, vv, uv = _dot(ab, ab), _dot(ac, ac), _dot(ab, ac)
+    pu, pv = _dot(ap, ab), _dot(ap, ac)
+    det = uu * vv - uv * uv
     with np.errstate(divide="ignore", invalid="ignore"):
-        total = va + vb + vc
-        v_in, w_in = vb / total, vc / total
-        closest = a + ab * v_in[:, None] + ac * w_in[:, None]          # inside the face
-        w_bc = (d4 - d3) / ((d4 - d3) + (d5 - d6))
-        on_bc = (va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0)
-        closest = np.where(on_bc[:, None], b + (c - b) * w_bc[:, None], closest)
-        w_ac = d2 / (d2 - d6)
-        on_ac = (vb <= 0) & (d2 >= 0) & (d6 <= 0)
-        closest = np.where(on_ac[:, None], a + ac * w_ac[:, None], closest)
-        v_ab = d1 / (d1 - d3)
-        on_ab = (vc <= 0) & (d1 >= 0) & (d3 <= 0)
-        closest = np.where(on_ab[:, None], a + ab * v_ab[:, None], closest)
-    closest = np.where(((d6 >= 0) & (d5 <= d6))[:, None], c, closest)
-    closest = np.where(((d3 >= 0) & (d4 <= d3))[:, None], b, closest)
-    closest = np.where(((d1 <= 0) & (d2 <= 0))[:, None], a, closest)
-    distance = np.sqrt(_dot(p - closest, p - closest))
-    bad = ~np.isfinite(distance)
-    if bad.any():  # zero-area triangle: the nearest of its three edges
-        distance[bad] = np.minimum.reduce([
-            point_segment_distance(p[bad], a[bad], b[bad]),
-            point_segment_distance(p[bad], b[bad], c[bad]),
-            point_segment_distance(p[bad], c[bad], a[bad])])
-    return distance
+        s = (vv * pu - uv * pv) / det
+        t = (uu * pv - uv * pu) / det
+    inside = (det > 0) & (s >= 0) & (t >= 0) & (s + t <= 1)
+    squared = np.empty(len(p))
+    if inside.any():
+        offset = ap[inside] - ab[inside] * s[inside, None] - ac[inside] * t[inside, None]
+        squared[inside] = _dot(offset, offset)
+    outside = ~inside
+    if outside.any():
+        po, ao, abo, aco = p[outside], a[outside], ab[outside], ac[outside]
+        squared[outside] = np.minimum.reduce([
+            _segment_squared(po, ao, abo), _segment_squared(po, ao, aco),
+            _segment_squared(po, ao + abo, aco - abo)])
+    return np.sqrt(squared)
+
+
+def _segment_squared(points: np.ndarray, a: np.ndarray, edge: np.ndarray) -> np.ndarray:
+    """Squared distance from each point to the segment a .. a + edge (pairwise)."""
+    ap = points - a
+    length_sq = _dot(edge, edge)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = _dot(ap, edge) / length_sq
+    t = np.clip(np.nan_to_num(t, nan=0.0, posinf=0.0, neginf=0.0), 0.0, 1.0)
+    offset = ap - edge * t[:, None]
+    return _dot(offset, offset)
 
 
 def point_segment_distance(points: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Distance from each point to the matching segment a-b (pairwise)."""
-    ab, ap = b - a, points - a
-    length_sq = _dot(ab, ab)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t = np.where(length_sq > 0, _dot(ap, ab) / length_sq, 0.0)
-    t = np.clip(np.nan_to_num(t), 0.0, 1.0)
-    offset = ap - ab * t[:, None]
-    return np.sqrt(_dot(offset, offset))
+    a = np.asarray(a, dtype=np.float64)
+    return np.sqrt(_segment_squared(np.asarray(points, dtype=np.float64), a,
+                                    np.asarray(b, dtype=np.float64) - a))
 
 
 class SurfaceIndex:
@@ -96,6 +105,10 @@ class SurfaceIndex:
         centroids = corners.mean(axis=1)
         radius = np.sqrt(((corners - centroids[:, None]) ** 2).sum(axis=2).max(axis=1))
         self._centroids = centroids
+        self._radius = radius
+        self._a = np.ascontiguousarray(corners[:, 0])
+        self._ab = np.ascontiguousarray(corners[:, 1] - corners[:, 0])
+        self._ac = np.ascontiguousarray(corners[:, 2] - corners[:, 0])
         self._near = cKDTree(centroids)
         positive = radius[radius > 0]
         smallest = float(positive.min()) if len(positive) else 1.0
@@ -122,14 +135,17 @@ class SurfaceIndex:
                            np.full(len(points), np.inf))
         for radius, members, tree in self._classes:
             balls = tree.query_ball_point(points, best + radius, return_sorted=False)
-            counts = np.fromiter((len(ball) for ball in balls), dtype=np.int64,
-                                 count=len(balls))
-            if counts.sum() == 0:
+            counts = np.fromiter(map(len, balls), dtype=np.int64, count=len(balls))
+            total = int(counts.sum())
+            if total == 0:
                 continue
-            faces = members[np.concatenate([np.asarray(b, dtype=np.int64)
-                                            for b in balls if len(b)])]
+            faces = members[np.fromiter(chain.from_iterable(balls), dtype=np.int64,
+                                        count=total)]
             owner = np.repeat(np.arange(len(points)), counts)
-            best = self._pairs(points, owner, faces, best)
+            # a triangle is no nearer than its centroid's distance less its own radius
+            gap = points[owner] - self._centroids[faces]
+            near = np.sqrt(_dot(gap, gap)) - self._radius[faces] <= best[owner]
+            best = self._pairs(points, owner[near], faces[near], best)
         return best
 
     def _pairs(self, points: np.ndarray, owner: np.ndarray, faces: np.ndarray,
@@ -137,9 +153,9 @@ class SurfaceIndex:
         """Lower `best` with the exact distances of the (point, triangle) pairs given."""
         for start in range(0, len(faces), PAIR_BLOCK):
             who = owner[start:start + PAIR_BLOCK]
-            tri = self.faces[faces[start:start + PAIR_BLOCK]]
-            d = point_triangle_distance(points[who], self.vertices[tri[:, 0]],
-                                        self.vertices[tri[:, 1]], self.vertices[tri[:, 2]])
+            tri = faces[start:start + PAIR_BLOCK]
+            d = _distance_to_triangles(points[who], self._a[tri], self._ab[tri],
+                                       self._ac[tri])
             np.minimum.at(best, who, d)
         return best
 
