@@ -23,6 +23,7 @@ DEFAULT_ROBOT = "ur_description/urdf/ur5_robot.urdf"
 
 def main() -> None:
     import robotdesc
+    from robotdesc.collision.worker import run_tasks
     from support import example_robot_data_dir
 
     parser = argparse.ArgumentParser()
@@ -35,6 +36,7 @@ def main() -> None:
     robot = robotdesc.load(str(robots / ns.robot))
     package_map = [("example-robot-data", str(robots.parent))]
     print(f"robot: {ns.robot} ({len(robot.links)} links)")
+    run_tasks(abs, [1], jobs=1, timeout_s=60)  # start the worker server before timing
     print(f"{'method':10} {'faces before':>12} {'after':>7} {'ratio':>7} {'hulls':>5} "
           f"{'mean H%':>8} {'max H%':>7} {'jobs=1 s':>9} {'jobs=2 s':>9} {'speedup':>7} "
           f"{'cached s':>9} failed")

@@ -22,7 +22,8 @@ from typing import Any, Callable, Sequence
 log = logging.getLogger(__name__)
 
 #: Modules imported once in the forkserver, so that every worker starts warm.
-PRELOAD = ["numpy", "scipy.spatial", "trimesh", "robotdesc.collision.link"]
+PRELOAD = ["numpy", "scipy.spatial", "trimesh", "meshoptimizer", "fast_simplification",
+           "robotdesc.collision.link"]
 
 
 @dataclass(frozen=True)
