@@ -48,7 +48,7 @@ def _distance_to_triangles(p: np.ndarray, a: np.ndarray, ab: np.ndarray,
     with np.errstate(divide="ignore", invalid="ignore"):
         s = (vv * pu - uv * pv) / det
         t = (uu * pv - uv * pu) / det
-    inside = (det > 0) & (s >= 0) & (t >= 0) & (s + t <= 1)
+        inside = (det > 0) & (s >= 0) & (t >= 0) & (s + t <= 1)
     squared = np.empty(len(p))
     if inside.any():
         offset = ap[inside] - ab[inside] * s[inside, None] - ac[inside] * t[inside, None]
