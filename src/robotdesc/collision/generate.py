@@ -2,9 +2,9 @@
 
 Pipeline per link: resolve its meshes (visual by default) -> hash the sources and the
 parameters -> serve from the cache, or load and validate the meshes and run the method in an
-isolated worker (see worker.py) -> check the engine limits. A link that fails (unreadable
-mesh, no volume, worker crash or timeout, broken result) is a finding for that link; the
-others complete. The input robot is never modified.
+isolated worker (see worker.py; on a Dask cluster, cluster.py) -> check the engine limits.
+A link that fails (unreadable mesh, no volume, worker crash or timeout, broken result) is a
+finding for that link; the others complete. The input robot is never modified.
 """
 
 from __future__ import annotations
@@ -46,7 +46,8 @@ def generate_collision(robot: Robot, method: str = "decimate", *,
                        package_map: Sequence[tuple[str, str]] = (),
                        links: Sequence[str] | None = None, jobs: int | None = None,
                        use_cache: bool = True, cache_dir: str | None = None,
-                       progress: Progress | None = None, **overrides) -> CollisionResult:
+                       progress: Progress | None = None, scheduler: str | None = None,
+                       **overrides) -> CollisionResult:
     """Make collision geometry for a robot's links and measure it.
 
     Args:
@@ -56,16 +57,20 @@ def generate_collision(robot: Robot, method: str = "decimate", *,
             (option names, e.g. `ratio=0.05`, `threshold=0.08`) replace its fields.
         package_paths, package_map: where `package://` meshes are looked up first.
         links: only these links (default: every link with geometry).
-        jobs: worker processes (default: all cores).
+        jobs: worker processes (default: all cores); ignored with `scheduler`.
         use_cache: reuse results of unchanged links.
         cache_dir: the cache root (default: $ROBOTDESC_CACHE_DIR or ~/.cache/robotdesc).
         progress: called with (links done, links in all, link name) as links finish.
+        scheduler: the address of a Dask scheduler (e.g. "tcp://host:8786"): the links
+            run on that cluster, each still in its own process on a Dask worker (needs
+            `robotdesc[dask]`; links served from the cache never reach the cluster).
 
     Returns:
         Per link: the new geometry and a report (faces, hulls, volume ratio, distances).
 
     Raises:
         ValueError: an option is out of range or a named link does not exist.
+        UsageError: `scheduler` is set but unreachable, or `distributed` is missing.
     """
     started = time.perf_counter()
     options = replace(options or CollisionOptions(), method=method, **overrides).validated()
@@ -102,8 +107,22 @@ def generate_collision(robot: Robot, method: str = "decimate", *,
         if progress is not None:
             progress(done, total, tasks[position][1].link)
 
-    results = run_tasks(LINK_RUNNER, [task for _, task in tasks], jobs=jobs,
-                        timeout_s=options.mesh_timeout_s, on_done=finished) if tasks else []
+    arguments = [task for _, task in tasks]
+    if not tasks:
+        results: list = []
+    elif scheduler is not None:
+        from robotdesc.collision.cluster import run_tasks_on_cluster
+
+        def connected(threads: int) -> None:
+            nonlocal jobs
+            jobs = max(1, threads)
+
+        results = run_tasks_on_cluster(LINK_RUNNER, arguments, scheduler=scheduler,
+                                       timeout_s=options.mesh_timeout_s, on_done=finished,
+                                       on_connect=connected)
+    else:
+        results = run_tasks(LINK_RUNNER, arguments, jobs=jobs,
+                            timeout_s=options.mesh_timeout_s, on_done=finished)
     for (index, task), outcome in zip(tasks, results):
         if isinstance(outcome, TaskFailure):
             code = {"crashed": "worker-crashed", "timeout": "worker-timeout"}.get(

@@ -55,6 +55,9 @@ def register(subparsers, *, common, expansion) -> None:
     parser.add_argument("--limit-hull-vertices", type=int,
                         help="override the engine's vertices per hull")
     parser.add_argument("--jobs", "-j", type=int, help="worker processes (default: all cores)")
+    parser.add_argument("--scheduler", metavar="ADDRESS",
+                        help="run the per-link work on a Dask cluster at ADDRESS, e.g. "
+                             "tcp://host:8786; needs robotdesc[dask]")
     parser.add_argument("--mesh-timeout", type=float, default=300.0, metavar="SECONDS",
                         help="wall-clock limit per link (default 300)")
     parser.add_argument("--format", choices=("text", "json"), default="text")
@@ -126,7 +129,8 @@ def run(ns: argparse.Namespace) -> int:
             result = generate_collision(robot, options=options, method=options.method,
                                         package_paths=package_paths, package_map=package_map,
                                         links=ns.link, jobs=ns.jobs,
-                                        use_cache=not ns.no_cache, progress=progress)
+                                        use_cache=not ns.no_cache, progress=progress,
+                                        scheduler=ns.scheduler)
     except ValueError as error:
         raise UsageError(str(error)) from None
     if ns.out and not ns.dry_run:
