@@ -125,6 +125,30 @@ def test_failed_links_leave_no_files_and_exit_one(package):
     assert text.count("<box") == 1  # the failed link keeps its collision
 
 
+def _folder_state(folder: Path) -> dict[str, bytes]:
+    return {str(p.relative_to(folder)): p.read_bytes() for p in folder.rglob("*") if p.is_file()}
+
+
+def test_a_rerun_never_drops_earlier_outputs_of_a_link_it_did_not_make(package, capsys):
+    urdf = write_urdf(package, {"hip": "hip.stl", "leg": "leg.stl"})
+    out = package / "collision"
+    hull = ["--method", "hull", "--limit-hull-vertices", "1000"]
+    assert main(["collision", str(urdf), *hull, "--out", str(out)]) == 0
+    before = _folder_state(out)
+    assert "meshes/leg.stl" in before
+    # only one link selected: the other's outputs would be lost
+    assert main(["collision", str(urdf), *hull, "--link", "hip", "--out", str(out)]) == 2
+    assert "leg" in capsys.readouterr().err
+    assert _folder_state(out) == before
+    # the leg's mesh turns bad: the link fails, its earlier outputs stay
+    soup = box_soup()
+    soup[0, 0, 0] = np.nan
+    write_binary_stl(package / "meshes" / "leg.stl", soup)
+    assert main(["collision", str(urdf), *hull, "--out", str(out)]) == 2
+    assert "nothing was written" in capsys.readouterr().err
+    assert _folder_state(out) == before
+
+
 def test_second_run_is_served_from_the_cache(package, tmp_path):
     urdf = write_urdf(package, {"hip": "hip.stl", "leg": "leg.stl"})
     robot = robotdesc.load(str(urdf))
@@ -152,3 +176,14 @@ def test_usage_errors(package):
     urdf = write_urdf(package, {"hip": "hip.stl"})
     assert main(["collision", str(urdf), "--method", "hull"]) == 2  # no --out
     assert main(["collision", str(urdf), "--ratio", "0", "--out", "x"]) == 2
+
+
+def test_links_with_the_same_sources_are_made_once(package):
+    urdf = write_urdf(package, {"left": "hip.stl", "right": "hip.stl", "leg": "leg.stl"})
+    result = robotdesc.generate_collision(robotdesc.load(str(urdf)), "hull", use_cache=False,
+                                          jobs=1)
+    by_link = {o.report.link: o for o in result.outcomes}
+    assert [by_link[name].report.cached for name in ("left", "right", "leg")] == \
+        [False, True, False]
+    assert by_link["right"].report.faces_after == by_link["left"].report.faces_after
+    assert np.array_equal(by_link["right"].parts[0].vertices, by_link["left"].parts[0].vertices)

@@ -79,12 +79,19 @@ def generate_collision(robot: Robot, method: str = "decimate", *,
     total = len(plan.sources)
     outcomes: dict[int, LinkOutcome] = {}
     tasks: list[tuple[int, LinkTask]] = []
+    first_with_key: dict[str, int] = {}   # links with the same sources are made once
+    copies: dict[int, int] = {}
     for index, (sources, key) in enumerate(zip(plan.sources, plan.keys)):
         hit = plan.cache.get(key) if plan.cache is not None and key else None
         if hit is not None:
             outcomes[index] = replace(hit, report=replace(hit.report, link=sources.link,
                                                           cached=True))
             continue
+        if key and key in first_with_key:
+            copies[index] = first_with_key[key]
+            continue
+        if key:
+            first_with_key[key] = index
         failure = None if not sources.problems else Finding(
             "mesh-unresolved", "error", "; ".join(sources.problems))
         if failure is None:
@@ -132,6 +139,13 @@ def generate_collision(robot: Robot, method: str = "decimate", *,
         elif plan.cache is not None and outcome.written:
             plan.cache.put(outcome)
         outcomes[index] = replace(outcome, key=task.key)
+    for index, original in copies.items():
+        made = outcomes[original]
+        outcomes[index] = replace(made, report=replace(
+            made.report, link=plan.sources[index].link, cached=made.written))
+        if progress is not None:
+            done += 1
+            progress(done, total, plan.sources[index].link)
     ordered = tuple(_with_limits(outcomes[i], options) for i in range(total))
     return CollisionResult(robot, ordered, options, time.perf_counter() - started, jobs)
 

@@ -83,9 +83,10 @@ def write_outputs(result: CollisionResult, urdf_xml: bytes, out_dir: str, *,
     """Write the planned files and the manifest into `out_dir`; returns the paths written.
 
     Raises:
-        OutputConflict: `out_dir` holds the source meshes (without `allow_source_dir`), or a
-            planned file exists that robotdesc did not write (or that was edited since).
-            Nothing is written then.
+        OutputConflict: `out_dir` holds the source meshes (without `allow_source_dir`), a
+            planned file exists that robotdesc did not write (or that was edited since), or
+            a link with outputs from an earlier run was not made now (it failed or was not
+            selected: its outputs would be lost). Nothing is written then.
     """
     out_dir = os.path.abspath(out_dir)
     real = os.path.realpath(out_dir)
@@ -96,6 +97,14 @@ def write_outputs(result: CollisionResult, urdf_xml: bytes, out_dir: str, *,
                              "(or pass --into-source-dir)", Span(out_dir))
     files = planned_files(result, urdf_xml, out_dir, from_xacro)
     old = read_manifest(out_dir) or Manifest()
+    written_links = {o.report.link for o in result.outcomes if o.written}
+    dropped = sorted(set(old.links) - written_links)
+    if dropped:
+        raise OutputConflict(
+            f"{len(dropped)} link(s) with outputs in this folder from an earlier run were not "
+            f"made now (failed, or not selected with --link): {', '.join(dropped)}; nothing "
+            f"was written, so those outputs are kept. Fix the failures (results made so far "
+            f"are cached) or write to another --out", Span(out_dir))
     conflicts = []
     for name, data in files.items():
         path = os.path.join(out_dir, name)
