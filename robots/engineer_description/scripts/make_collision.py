@@ -58,7 +58,8 @@ SETS: tuple[CollisionSet, ...] = (
     # The head with its fork, LRF, cameras and mount, and the gripper's parts: convex pieces
     # (CoACD), which every engine collides fast; the jaws' pieces follow their pads, so the
     # closed jaws stay apart.
-    CollisionSet("meshes/collision/coacd", "coacd", ("--threshold", "0.08", "--seed", "0"),
+    CollisionSet("meshes/collision/coacd", "coacd", ("--threshold", "0.08", "--seed", "0",
+                                                     "--mesh-timeout", "1800"),
                  ("head_link", "part_one_left", "part_one_right",
                   "part_two_left", "part_two_right", "part_three_left", "part_three_right")),
 )
