@@ -59,6 +59,22 @@ def test_crawl_skips_build_folders_and_nested_packages(tmp_path):
     assert set(crawl_packages(tmp_path)) == {"top"}
 
 
+def test_an_install_space_folder_name_is_a_package_name_too(tmp_path):
+    """example-robot-data installs share/example-robot-data/ with a package.xml named
+    example_robot_descriptions, and its URDFs say package://example-robot-data."""
+    share = tmp_path / "prefix" / "share"
+    folder = share / "example-robot-data"
+    folder.mkdir(parents=True)
+    (folder / "package.xml").write_text(
+        "<package format='3'><name>example_robot_descriptions</name></package>")
+    found = crawl_packages(share)
+    assert found == {"example_robot_descriptions": folder, "example-robot-data": folder}
+    other = _package(tmp_path / "src", "real_name")
+    (tmp_path / "src" / "renamed").mkdir()
+    other.rename(tmp_path / "src" / "renamed" / "pkg")  # not under share/: no alias
+    assert set(crawl_packages(tmp_path / "src")) == {"real_name"}
+
+
 def test_split_package_uri():
     assert split_package_uri("package://pkg/meshes/a.stl") == ("pkg", "meshes/a.stl", False)
     assert split_package_uri("package:///pkg/meshes/a.stl") == ("pkg", "meshes/a.stl", True)

@@ -71,6 +71,9 @@ def workspace_root(package_dir: Path) -> Path:
 def crawl_packages(root: Path, max_depth: int = _MAX_SEARCH_DEPTH) -> dict[str, Path]:
     """Every package under `root` (not descending into a package), name -> folder.
 
+    In an install space (`.../share/<folder>/package.xml`) the folder's name is a name of
+    the package too, as for ament.
+
     The first folder found (sorted walk) wins when two packages share a name. Results are
     remembered for the life of the process (a lint run; packages do not appear mid-run).
     """
@@ -88,6 +91,10 @@ def _crawl_packages_cached(root_text: str, max_depth: int) -> tuple[tuple[str, P
             name = read_package_name(str(manifest))
             if name and name not in found:
                 found[name] = folder
+            if folder.parent.name == "share" and folder.name not in found:
+                # an install space: ament finds share/<folder> by the folder's name, which
+                # may differ from package.xml's (example-robot-data: example_robot_descriptions)
+                found[folder.name] = folder
             return
         if depth >= max_depth or (folder / "CATKIN_IGNORE").exists() or (folder / "COLCON_IGNORE").exists():
             return
