@@ -17,15 +17,20 @@ from __future__ import annotations
 
 import argparse
 import sys
-import sysconfig
 import time
 from pathlib import Path
 
 import numpy as np
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from support import example_robot_data_dir  # noqa: E402
+
 
 def robots_dir() -> Path:
-    return Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix/share/example-robot-data/robots"
+    root = example_robot_data_dir()
+    if root is None:
+        sys.exit("example-robot-data is not installed (pip install -e \".[test]\")")
+    return root
 
 
 def best_time(function, repeat: int) -> float:

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import argparse
 import sys
-import sysconfig
 import time
 from pathlib import Path
 
@@ -21,6 +20,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "rules"))
 from test_large_robot import lint_all, many_wheeled_robot  # noqa: E402
 
 from robotdesc.model.parse import parse_urdf  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from support import example_robot_data_dir  # noqa: E402
 
 
 def best_of(repeat: int, work) -> float:
@@ -37,8 +39,8 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=5)
     repeat = parser.parse_args().repeat
     cases = [("rover, 212 wheels (generated)", many_wheeled_robot(212))]
-    robots = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix/share/example-robot-data/robots"
-    for path in sorted(robots.rglob("*.urdf"), key=lambda p: p.stat().st_size)[-3:]:
+    robots = example_robot_data_dir()
+    for path in sorted(robots.rglob("*.urdf") if robots else (), key=lambda p: p.stat().st_size)[-3:]:
         cases.append((path.name, path.read_bytes()))
     print(f"{'input':34s} {'lxml parse':>11s} {'parse':>9s} {'parse+rules':>12s} {'ratio to lxml':>14s}")
     for name, data in cases:

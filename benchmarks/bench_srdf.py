@@ -11,7 +11,6 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-import sysconfig
 import time
 from pathlib import Path
 
@@ -23,7 +22,10 @@ from robotdesc.kinematics.resolve import mesh_resolver, package_lookup  # noqa: 
 from robotdesc.model.parse import parse_urdf  # noqa: E402
 from robotdesc.srdf import compute_matrix  # noqa: E402
 
-ROBOTS = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix/share/example-robot-data/robots"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from support import example_robot_data_dir  # noqa: E402
+
+ROBOTS = example_robot_data_dir() or Path("example-robot-data-not-installed")
 ENGINEER = REPO / "robots/engineer_description/urdf/engineer.urdf.xacro"
 TARGET_S = 20.0
 

@@ -23,13 +23,15 @@ import os
 import statistics
 import subprocess
 import sys
-import sysconfig
 import tempfile
 import time
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+from support import example_robot_data_dir  # noqa: E402
+
 HERE = Path(__file__).resolve().parent
-SHARE = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix" / "share" / "example-robot-data"
+ROBOTS = example_robot_data_dir()
 
 
 def lint_command(robots: Path, config: Path, jobs: int) -> list[str]:
@@ -76,7 +78,7 @@ def workload(command: list[str], env: dict[str, str]) -> str:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--repeat", type=int, default=3)
-    parser.add_argument("--robots", type=Path, default=SHARE / "robots")
+    parser.add_argument("--robots", type=Path, default=ROBOTS)
     options = parser.parse_args()
     if not options.robots.is_dir():
         raise SystemExit(f"no example-robot-data at {options.robots} "

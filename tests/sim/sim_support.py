@@ -4,13 +4,15 @@ suggested-inertia variant of a robot (through robotdesc's inertia API)."""
 from __future__ import annotations
 
 import dataclasses
-import sysconfig
 from pathlib import Path
 
 import pytest
 
+from support import example_robot_data_dir
+
 FIXTURES = Path(__file__).parent / "fixtures"
-ERD = Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix/share/example-robot-data"
+_ROBOTS = example_robot_data_dir()
+ERD = _ROBOTS.parent if _ROBOTS is not None else Path("example-robot-data-not-installed")
 
 
 @pytest.fixture(scope="session")

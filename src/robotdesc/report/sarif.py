@@ -76,7 +76,7 @@ def sarif_log(results: Sequence[Any], failures: Sequence[Any] = (), *,
 
 def rule_descriptor(rule: Any) -> dict[str, Any]:
     """A rule's SARIF reportingDescriptor: id, name, descriptions, help, default level."""
-    from robotdesc.rules.docs import SECTION_HEADINGS, _anchor
+    from robotdesc.rules.docs import SECTION_HEADINGS, rule_anchor
 
     doc = rule.doc or rule.summary
     what = doc.split(f"\n{SECTION_HEADINGS[0]}", 1)[0].strip()
@@ -88,7 +88,7 @@ def rule_descriptor(rule: Any) -> dict[str, Any]:
         "shortDescription": {"text": rule.summary},
         "fullDescription": {"text": what},
         "help": {"text": doc, "markdown": markdown},
-        "helpUri": f"{RULES_DOC_URI}#{_anchor(rule)}",
+        "helpUri": f"{RULES_DOC_URI}#{rule_anchor(rule)}",
         "defaultConfiguration": {"level": _LEVEL[rule.severity]},
         "properties": {"tags": [rule.family], "family": rule.family},
     }

@@ -29,7 +29,7 @@ def render_rules_markdown() -> str:
         "| Code | Name | Family | Default severity |",
         "|------|------|--------|------------------|",
     ]
-    parts += [f"| [{r.code}](#{_anchor(r)}) | {r.name} | {r.family} | {r.severity} |"
+    parts += [f"| [{r.code}](#{rule_anchor(r)}) | {r.name} | {r.family} | {r.severity} |"
               for r in rules]
     parts.append("")
     for rule_ in rules:
@@ -37,7 +37,7 @@ def render_rules_markdown() -> str:
     return "\n".join(parts).rstrip("\n") + "\n"
 
 
-def _anchor(rule_: Rule) -> str:
+def rule_anchor(rule_: Rule) -> str:
     return f"{rule_.code}-{rule_.name}".lower()
 
 

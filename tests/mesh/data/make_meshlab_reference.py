@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import json
 import sys
-import sysconfig
 from importlib import metadata
 from pathlib import Path
 
@@ -39,7 +38,13 @@ MESHES = (
 
 def robots_dir() -> Path:
     """example-robot-data's robots/ directory (installed by the cmeel wheel)."""
-    return Path(sysconfig.get_paths()["purelib"]) / "cmeel.prefix/share/example-robot-data/robots"
+    sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
+    from support import example_robot_data_dir
+
+    root = example_robot_data_dir()
+    if root is None:
+        sys.exit("example-robot-data is not installed")
+    return root
 
 
 def measure(path: Path) -> dict:
