@@ -55,3 +55,20 @@ def test_a_second_lint_gives_the_same_findings_from_the_cache(tmp_path, monkeypa
                         lambda *a, **k: (_ for _ in ()).throw(AssertionError("rule ran again")))
     second = lint_file(str(urdf), expand_options=options, select=["K201"])
     assert second.diagnostics == first.diagnostics
+
+
+def test_a_copy_of_a_urdf_gets_findings_that_point_into_the_copy(tmp_path):
+    """The same bytes in two places: the cached findings of one never name the other."""
+    from robotdesc.expansion import ExpandOptions
+    from robotdesc.linting.driver import lint_file
+
+    options = ExpandOptions(cache_dir=str(tmp_path / "cache"))
+    paths = []
+    for folder in ("a", "b"):
+        (tmp_path / folder).mkdir()
+        paths.append(tmp_path / folder / "two.urdf")
+        paths[-1].write_bytes(OVERLAP)
+    for path in paths:
+        found = lint_file(str(path), expand_options=options, select=["K201"]).diagnostics
+        assert [d.code for d in found] == ["K201"]
+        assert all(d.where.span.path == str(path) for d in found), found

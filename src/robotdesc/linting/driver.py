@@ -111,7 +111,8 @@ def _run_cached(rule: Any, robot: Any, context: Any, document: bytes, options: A
     from robotdesc.cache_dir import default_cache_dir
 
     folder = Path(options.cache_dir) if options.cache_dir else default_cache_dir()
-    key = rule_cache.rule_key(rule, context.options, document, _mesh_files(robot, context))
+    key = rule_cache.rule_key(rule, context.options, document, _mesh_files(robot, context),
+                              source=robot.source or "")
     found = rule_cache.load(folder, key)
     if found is None:
         found = list(run_rule(rule, robot, context))

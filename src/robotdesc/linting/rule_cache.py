@@ -32,8 +32,10 @@ def is_cached(rule: Any) -> bool:
     return CACHED_NEED in rule.needs
 
 
-def rule_key(rule: Any, options: Any, document: bytes, mesh_files: Iterable[str]) -> str:
-    """The key of one rule's findings on one expanded document."""
+def rule_key(rule: Any, options: Any, document: bytes, mesh_files: Iterable[str],
+             source: str = "") -> str:
+    """The key of one rule's findings on one expanded document read from `source` (the
+    findings point into it: two copies of one URDF have different keys)."""
     from importlib import metadata
 
     from robotdesc import __version__
@@ -52,6 +54,7 @@ def rule_key(rule: Any, options: Any, document: bytes, mesh_files: Iterable[str]
         except OSError:
             stats.append((path, None, None, None))
     material = json.dumps({"format": _FORMAT, "rule": rule.code, "options": repr(options),
+                           "source": os.path.abspath(source) if source else "",
                            "document": hashlib.sha256(document).hexdigest(), "meshes": stats,
                            "versions": [__version__, version("pin"), version("coal")]})
     return hashlib.sha256(material.encode()).hexdigest()
