@@ -53,8 +53,15 @@ def test_go1_calf_limits_exclude_zero_and_rotors_sit_inside_the_trunk() -> None:
 
 
 def test_panda_joint4_limits_exclude_the_zero_configuration() -> None:
+    """And at that pose (joint 4 at its limit next to zero, fingers closed) the collision
+    meshes of the hand, link 5 and link 7 overlap, and so do the fingers."""
     assert located("panda.urdf", "K102") == {("joint:panda_joint4", 124)}
-    assert Counter(code for code, _ in lint("panda.urdf")) == Counter({"K102": 1})
+    collide = {finding.message.split(" collide")[0]
+               for code, finding in lint("panda.urdf") if code == "K201"}
+    assert collide == {"links 'panda_hand' and 'panda_link5'",
+                       "links 'panda_link5' and 'panda_link7'",
+                       "links 'panda_leftfinger' and 'panda_rightfinger'"}
+    assert Counter(code for code, _ in lint("panda.urdf")) == Counter({"K102": 1, "K201": 3})
 
 
 def test_z1_links_without_collision_and_overlapping_at_zero() -> None:

@@ -88,13 +88,8 @@ def _crawl_packages_cached(root_text: str, max_depth: int) -> tuple[tuple[str, P
     def visit(folder: Path, depth: int) -> None:
         manifest = folder / "package.xml"
         if manifest.is_file():
-            name = read_package_name(str(manifest))
-            if name and name not in found:
-                found[name] = folder
-            if folder.parent.name == "share" and folder.name not in found:
-                # an install space: ament finds share/<folder> by the folder's name, which
-                # may differ from package.xml's (example-robot-data: example_robot_descriptions)
-                found[folder.name] = folder
+            for name in _names_of(read_package_name(str(manifest)), folder):
+                found.setdefault(name, folder)
             return
         if depth >= max_depth or (folder / "CATKIN_IGNORE").exists() or (folder / "COLCON_IGNORE").exists():
             return
@@ -110,6 +105,16 @@ def _crawl_packages_cached(root_text: str, max_depth: int) -> tuple[tuple[str, P
     if root.is_dir():
         visit(root, 0)
     return tuple(found.items())
+
+
+def _names_of(name: str | None, folder: Path) -> tuple[str, ...]:
+    """The names a package folder answers to: its package.xml name and, in an install space
+    (`.../share/<folder>`), the folder's name, by which ament finds it (example-robot-data's
+    package.xml says example_robot_descriptions)."""
+    names = (name,) if name else ()
+    if folder.parent.name == "share" and folder.name not in names:
+        names += (folder.name,)
+    return names
 
 
 @dataclass(frozen=True)
@@ -181,7 +186,7 @@ class PackageResolver:
         explicit = self._explicit_packages()
         if name in explicit:
             return ResolvedPackage(name, str(explicit[name][0]), explicit[name][1])
-        if self.enclosing and self.enclosing[0] == name:
+        if self.enclosing and name in _names_of(*self.enclosing):
             return ResolvedPackage(name, str(self.enclosing[1]), "enclosing")
         if self.enclosing:
             if self._workspace is None:
