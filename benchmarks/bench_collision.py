@@ -32,6 +32,9 @@ def main() -> None:
     parser.add_argument("--methods",
                         default="decimate,decimate/fast-simplification,hull,primitive,coacd",
                         help="methods; decimate/ENGINE picks the decimator")
+    parser.add_argument("--dask", action="store_true",
+                        help="also time each method on a local Dask cluster of 2 worker "
+                             "processes (robotdesc[dask]) against --jobs 2")
     ns = parser.parse_args()
     robots = example_robot_data_dir()
     if robots is None:
@@ -72,6 +75,23 @@ def main() -> None:
               f"{ratio:>7} {totals['hulls']:>5} {mean:>8.2f} {worst:>7.2f} {times[1]:>9.2f} "
               f"{times[2]:>9.2f} {times[1] / times[2]:>7.2f} {cached:>9.2f} "
               f"{','.join(failed) or '-'}")
+        if ns.dask:
+            seconds = _on_local_cluster(robotdesc, robot, method, package_map, extra)
+            print(f"{'':29} on a local Dask cluster (2 workers): {seconds:.2f} s, "
+                  f"{seconds / times[2]:.2f}x the --jobs 2 time")
+
+
+def _on_local_cluster(robotdesc, robot, method: str, package_map, extra: dict) -> float:
+    """Wall time of one uncached run on a fresh local Dask cluster (started before timing)."""
+    from distributed import LocalCluster
+
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                      dashboard_address=None) as cluster, \
+            tempfile.TemporaryDirectory() as cache:
+        start = time.perf_counter()
+        robotdesc.generate_collision(robot, method, package_map=package_map, cache_dir=cache,
+                                     scheduler=cluster.scheduler_address, **extra)
+        return time.perf_counter() - start
 
 
 if __name__ == "__main__":
