@@ -27,7 +27,8 @@ from robotdesc.collision.sources import (
     package_lookup,
     sources_digest,
 )
-from robotdesc.collision.worker import TaskFailure, default_jobs, run_tasks
+from robotdesc.collision.worker import TaskFailure, default_jobs, run_tasks, \
+    start_workers_early
 from robotdesc.errors import InputError
 from robotdesc.model.elements import Robot
 
@@ -92,6 +93,8 @@ def generate_collision(robot: Robot, method: str = "decimate", *,
             continue
         if key:
             first_with_key[key] = index
+        if scheduler is None and not tasks:
+            start_workers_early()  # its imports overlap the loading of the meshes
         failure = None if not sources.problems else Finding(
             "mesh-unresolved", "error", "; ".join(sources.problems))
         if failure is None:

@@ -47,6 +47,15 @@ def _context() -> multiprocessing.context.BaseContext:
     return multiprocessing.get_context("spawn")
 
 
+def start_workers_early() -> None:
+    """Start the forkserver now, so that its imports overlap the caller's own work (mesh
+    loading); `run_tasks` would otherwise start it, and wait for it, on its first task."""
+    if _context().get_start_method() == "forkserver":
+        from multiprocessing import forkserver
+
+        forkserver.ensure_running()
+
+
 def _child(function: Callable[[Any], Any], argument: Any, connection: Any) -> None:
     try:
         result = function(argument)
