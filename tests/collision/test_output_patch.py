@@ -186,8 +186,11 @@ def test_collisions_from_a_generated_snippet_are_not_patched(package):
     assert _generate(top, out) == 0
     patch = (out / "demo.collision.patch").read_text()
     assert "# Nothing to patch" in patch and "\n--- a/" not in patch
-    assert "base: nothing to patch: its <collision> comes from demo.collision.xacro:" \
+    assert "Up to date (they call this run's macros already, nothing to do): base" \
         in _header(patch)
+    assert "Not patched" not in _header(patch)
+    assert "not in demo.collision.patch: up to date: its <collision> comes from " \
+        "demo.collision.xacro:" in (out / "demo.collision.xacro").read_text()
 
 
 def test_no_patch_for_a_plain_urdf(package):

@@ -30,6 +30,8 @@ from robotdesc.collision.manifest import read_manifest
 from robotdesc.collision.xml_extent import ElementExtent, element_extents
 from robotdesc.model.elements import Link, Robot
 
+#: The reason given for a link whose `<collision>` already comes from this run's snippet.
+UP_TO_DATE = "up to date"
 #: (link name, folder of the file the elements go into) -> the new `<collision>` elements.
 Render = Callable[[str, str], Sequence[etree._Element]]
 
@@ -234,7 +236,7 @@ class _Planner:
         if name not in self.generated[folder]:
             return
         if os.path.realpath(folder) == os.path.realpath(self.out_dir):
-            raise _Unpatchable(f"nothing to patch: its <collision> comes from {self.where(key)}, "
+            raise _Unpatchable(f"{UP_TO_DATE}: its <collision> comes from {self.where(key)}, "
                                "which this run rewrote")
         raise _Unpatchable(f"its <collision> comes from {self.where(key)}, an output of "
                            "another `robotdesc collision` run: regenerate that folder instead")
@@ -392,6 +394,11 @@ def _header(out_dir: str, patch_name: str, root: str, files: Sequence[str],
                           + ", ".join(_short(f, out_dir) for f in escaping)
                           + " (lint M104); use an --out folder inside a ROS package for "
                           "package:// URIs.")
+    current = [item.link for item in skipped if item.reason.startswith(UP_TO_DATE)]
+    skipped = [item for item in skipped if not item.reason.startswith(UP_TO_DATE)]
+    if current:
+        lines += _wrapped("Up to date (they call this run's macros already, nothing to do): "
+                          + ", ".join(current))
     if skipped:
         name = patch_name.replace(".patch", ".xacro")
         lines += _wrapped(f"Not patched (paste their macros from {name} by hand; positions "
