@@ -10,6 +10,7 @@ finding for that link; the others complete. The input robot is never modified.
 from __future__ import annotations
 
 import logging
+import os
 import time
 from dataclasses import replace
 from typing import Callable, Sequence
@@ -24,11 +25,11 @@ from robotdesc.collision.sources import (
     file_digest,
     link_sources,
     load_link_soup,
-    package_lookup,
     sources_digest,
 )
 from robotdesc.collision.worker import TaskFailure, default_jobs, run_tasks, \
     start_workers_early
+from robotdesc.expansion.packages import package_lookup
 from robotdesc.errors import InputError
 from robotdesc.model.elements import Robot
 
@@ -170,7 +171,8 @@ def plan_links(robot: Robot, options: CollisionOptions, package_paths: Sequence[
     """Resolve each link's sources and compute its key (used by generation and --check)."""
     from robotdesc.mesh.cache import MeshCache, default_cache_dir
 
-    found = link_sources(robot, options.source, package_lookup(robot, package_paths,
+    found = link_sources(robot, options.source, package_lookup(robot.source or os.getcwd(),
+                                                               package_paths,
                                                                package_map))
     if links is not None:
         known = {s.link for s in found}

@@ -11,7 +11,7 @@ import hashlib
 import json
 import os
 from dataclasses import dataclass
-from typing import Callable, Sequence
+from typing import Callable
 
 import numpy as np
 
@@ -47,21 +47,6 @@ class LinkSources:
     @property
     def mesh_paths(self) -> tuple[str, ...]:
         return tuple(i.path for i in self.items if i.path)
-
-
-def package_lookup(robot: Robot, package_paths: Sequence[str] = (),
-                   package_map: Sequence[tuple[str, str]] = ()) -> Callable[[str], str | None]:
-    """The ROS-free package resolver chain for meshes of `robot` (see expansion/packages.py)."""
-    from robotdesc.expansion.packages import PackageResolver, PackageResolverConfig
-
-    resolver = PackageResolver(PackageResolverConfig.from_environment(
-        robot.source or os.getcwd(), tuple(package_paths), tuple(package_map)))
-
-    def find(name: str) -> str | None:
-        found = resolver.find(name)
-        return found.path if found else None
-
-    return find
 
 
 def link_sources(robot: Robot, source: str,

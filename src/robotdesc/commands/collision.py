@@ -135,10 +135,12 @@ def run(ns: argparse.Namespace) -> int:
         raise UsageError(str(error)) from None
     if ns.out and not ns.dry_run:
         from robotdesc.collision.output import write_outputs
-        from robotdesc.collision.sources import link_sources, package_lookup
+        from robotdesc.collision.sources import link_sources
+        from robotdesc.expansion.packages import package_lookup
 
         found = link_sources(robot, options.source,
-                             package_lookup(robot, package_paths, package_map))
+                             package_lookup(robot.source or os.getcwd(), package_paths,
+                                            package_map))
         dirs = tuple(sorted({os.path.dirname(p) for s in found for p in s.mesh_paths}))
         write_outputs(result, expanded.xml, ns.out, from_xacro=expanded.from_xacro,
                       source_dirs=dirs, allow_source_dir=ns.into_source_dir)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import functools
 import logging
 import os
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -231,3 +232,23 @@ def split_package_uri(uri: str) -> tuple[str, str, bool] | None:
     rest = rest.lstrip("/")
     pkg, _, rel = rest.partition("/")
     return pkg, rel, three
+
+
+def package_lookup(origin: str, package_paths: Sequence[str] = (),
+                   package_map: Sequence[tuple[str, str]] = ()) -> Callable[[str], str | None]:
+    """A `find_package(name) -> folder or None` over the resolver chain (never a ROS lookup).
+
+    Args:
+        origin: the description file (its enclosing package and workspace are searched).
+        package_paths: `--package-path` folders, searched first.
+        package_map: explicit (package, folder) pairs from the config.
+    """
+    resolver = PackageResolver(PackageResolverConfig.from_environment(
+        origin, tuple(package_paths), tuple(package_map)))
+
+    @functools.lru_cache(maxsize=None)
+    def find(name: str) -> str | None:
+        found = resolver.find(name)
+        return found.path if found else None
+
+    return find

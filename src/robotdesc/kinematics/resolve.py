@@ -2,35 +2,15 @@
 
 from __future__ import annotations
 
-import functools
 import os
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 
+from robotdesc.expansion.packages import package_lookup
 from robotdesc.model.elements import MeshRef, Robot
 
+__all__ = ["PackageLookup", "mesh_resolver", "package_lookup"]
+
 PackageLookup = Callable[[str], "str | None"]
-
-
-def package_lookup(origin: str, package_paths: Sequence[str] = (),
-                   package_map: Sequence[tuple[str, str]] = ()) -> PackageLookup:
-    """A `find_package(name) -> folder or None` using the expansion's resolver chain.
-
-    Args:
-        origin: the description file (its enclosing package and workspace are searched).
-        package_paths: `--package-path` folders, searched first.
-        package_map: explicit (package, folder) pairs from the config.
-    """
-    from robotdesc.expansion.packages import PackageResolver, PackageResolverConfig
-
-    resolver = PackageResolver(PackageResolverConfig.from_environment(
-        origin, tuple(package_paths), tuple(package_map)))
-
-    @functools.lru_cache(maxsize=None)
-    def find(name: str) -> str | None:
-        found = resolver.find(name)
-        return found.path if found else None
-
-    return find
 
 
 def mesh_resolver(robot: Robot, find_package: PackageLookup) -> Callable[[MeshRef], str | None]:

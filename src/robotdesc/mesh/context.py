@@ -122,15 +122,9 @@ class MeshContext:
                  package_paths: tuple[str, ...] = (),
                  package_map: tuple[tuple[str, str], ...] = ()) -> MeshContext:
         """The context for a linted file: the expansion's package chain and the mesh cache."""
-        from robotdesc.expansion.packages import PackageResolver, PackageResolverConfig
+        from robotdesc.expansion.packages import package_lookup
 
-        resolver = PackageResolver(PackageResolverConfig.from_environment(
-            target, package_paths, package_map))
-
-        def find_package(name: str) -> str | None:
-            hit = resolver.find(name)
-            return hit.path if hit is not None else None
-
+        find_package = package_lookup(target, package_paths, package_map)
         directory = default_cache_dir() if settings.cache else None
         return cls(robot, settings, find_package, MeshCache(directory) if directory else None)
 

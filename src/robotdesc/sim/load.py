@@ -49,17 +49,14 @@ def mesh_assets_for(source: str, expand_options: Any = None,
         expand_options: `ExpandOptions` (its package paths and map are searched first).
         known: packages already resolved (name -> directory).
     """
-    from robotdesc.expansion.packages import PackageResolver, PackageResolverConfig
+    from robotdesc.expansion.packages import package_lookup
 
     paths = tuple(getattr(expand_options, "package_paths", ()) or ())
     mapping = tuple(getattr(expand_options, "package_map", ()) or ())
-    resolver = PackageResolver(PackageResolverConfig.from_environment(source, paths, mapping))
+    search = package_lookup(source, paths, mapping)
     resolved = dict(known or {})
 
     def find_package(name: str) -> str | None:
-        if name in resolved:
-            return resolved[name]
-        hit = resolver.find(name)
-        return hit.path if hit is not None else None
+        return resolved[name] if name in resolved else search(name)
 
     return MeshAssets(find_package, os.path.dirname(os.path.abspath(source)))

@@ -34,16 +34,9 @@ class MeshFiles:
                   package_map: Sequence[tuple[str, str]] = (),
                   allow_absolute: bool = False) -> MeshFiles:
         """A resolver using the expansion's package chain, searched from `robot.source`."""
-        from robotdesc.expansion.packages import PackageResolver, PackageResolverConfig
+        from robotdesc.expansion.packages import package_lookup
 
-        origin = robot.source or os.getcwd()
-        resolver = PackageResolver(PackageResolverConfig.from_environment(
-            origin, tuple(package_paths), tuple(package_map)))
-
-        def find_package(name: str) -> str | None:
-            hit = resolver.find(name)
-            return hit.path if hit is not None else None
-
+        find_package = package_lookup(robot.source or os.getcwd(), package_paths, package_map)
         return cls(robot, find_package, allow_absolute)
 
     def resolve(self, ref: MeshRef) -> MeshResolution:
