@@ -187,3 +187,20 @@ def test_links_with_the_same_sources_are_made_once(package):
         [False, True, False]
     assert by_link["right"].report.faces_after == by_link["left"].report.faces_after
     assert np.array_equal(by_link["right"].parts[0].vertices, by_link["left"].parts[0].vertices)
+
+
+def test_cli_decimator_choice_is_reported_and_refused_when_unknown(package, capsys):
+    import json
+
+    urdf = write_urdf(package, {"hip": "hip.stl"})
+    base = ["collision", str(urdf), "--method", "decimate", "--dry-run", "--format", "json",
+            "--ratio", "0.1"]
+    assert main(base + ["--decimator", "fast-simplification"]) in (0, 1)
+    [link] = json.loads(capsys.readouterr().out)["links"]
+    assert link["faces_after"] <= 0.1 * link["faces_before"] * 1.05 + 4
+    assert "fast-simplification" in link["detail"]
+    assert main(base) in (0, 1)
+    [link] = json.loads(capsys.readouterr().out)["links"]
+    assert "meshoptimizer" in link["detail"]
+    assert main(base + ["--decimator", "blender"]) == 2
+    assert "invalid choice: 'blender'" in capsys.readouterr().err
