@@ -20,11 +20,9 @@
 # compare them with the visual ones. It needs no ROS and no network.
 #
 # Open it as a notebook (`jupytext --to notebook docs/tutorial.py`), or run all its cells
-# from the repository root as a kernel would:
-# `python -c "exec(open('docs/tutorial.py').read())"`. (Not `python docs/tutorial.py`: the
-# collision step runs in worker processes, and each would import a script that is the main
-# module again; a notebook has no such file. Your own scripts guard their entry point with
-# `if __name__ == "__main__":`.) The test suite runs it (tests/test_tutorial.py), so every
+# from the repository root with `python docs/tutorial.py` (robotdesc's worker processes never
+# run your script again, so a script needs no `if __name__ == "__main__":` guard for them).
+# The test suite runs it (tests/test_tutorial.py), so every
 # cell here works. Pages it writes go to `$ROBOTDESC_TUTORIAL_OUT` (default: a new temporary
 # folder).
 

@@ -12,9 +12,9 @@ import pytest
 REPO = Path(__file__).resolve().parents[1]
 TUTORIAL = REPO / "docs" / "tutorial.py"
 
-#: Run the cells as a notebook kernel does (in a namespace, not as the main module's file,
-#: so that worker processes do not import it again), with IP connections refused: a cell
-#: that reached for the network fails the test. Unix sockets stay allowed for the workers.
+#: Run the tutorial as `python docs/tutorial.py` does (the main module is its file, which
+#: worker processes must not run again), with IP connections refused: a cell that reached
+#: for the network fails the test. Unix sockets stay allowed for the workers.
 OFFLINE_RUNNER = """
 import socket, sys
 _connect = socket.socket.connect
@@ -23,8 +23,8 @@ def connect(self, address):
         raise OSError("network access in the tutorial: " + repr(address))
     return _connect(self, address)
 socket.socket.connect = connect
-source = open(sys.argv[1], encoding="utf-8").read()
-exec(compile(source, sys.argv[1], "exec"), {"__name__": "__main__", "__file__": sys.argv[1]})
+import runpy
+runpy.run_path(sys.argv[1], run_name="__main__")
 """
 
 

@@ -13,11 +13,13 @@ import logging
 import multiprocessing
 import os
 import signal
+import sys
 import time
 import traceback
+from contextlib import contextmanager
 from dataclasses import dataclass
 from multiprocessing.connection import wait
-from typing import Any, Callable, Sequence
+from typing import Any, Callable, Iterator, Sequence
 
 log = logging.getLogger(__name__)
 
@@ -54,6 +56,30 @@ def start_workers_early() -> None:
         from multiprocessing import forkserver
 
         forkserver.ensure_running()
+
+
+@contextmanager
+def _main_module_hidden() -> Iterator[None]:
+    """Start a worker without re-running the caller's main script in it.
+
+    multiprocessing's forkserver and spawn re-import `__main__` in every child (by its
+    file, or by its module name under `python -m`), so a script calling robotdesc at top
+    level, without an `if __name__ == "__main__":` guard, would run again in each worker
+    and fail there. The workers only run robotdesc's own functions, so while a worker is
+    being started the main module's file and spec are hidden from that preparation step.
+    """
+    main = sys.modules.get("__main__")
+    saved = {name: getattr(main, name) for name in ("__file__", "__spec__")
+             if main is not None and hasattr(main, name)}
+    try:
+        if "__file__" in saved:
+            del main.__file__
+        if "__spec__" in saved:
+            main.__spec__ = None
+        yield
+    finally:
+        for name, value in saved.items():
+            setattr(main, name, value)
 
 
 def _child(function: Callable[[Any], Any], argument: Any, connection: Any) -> None:
@@ -94,7 +120,8 @@ def run_tasks(function: Callable[[Any], Any], arguments: Sequence[Any], *, jobs:
                 process = context.Process(target=_child,
                                           args=(function, arguments[index], writer),
                                           daemon=True)
-                process.start()
+                with _main_module_hidden():
+                    process.start()
                 writer.close()
                 running[reader] = (index, process, reader, time.monotonic())
             now = time.monotonic()
