@@ -129,23 +129,49 @@ def _folder_state(folder: Path) -> dict[str, bytes]:
     return {str(p.relative_to(folder)): p.read_bytes() for p in folder.rglob("*") if p.is_file()}
 
 
-def test_a_rerun_never_drops_earlier_outputs_of_a_link_it_did_not_make(package, capsys):
+def test_a_rerun_keeps_the_outputs_of_links_it_does_not_make(package, capsys):
     urdf = write_urdf(package, {"hip": "hip.stl", "leg": "leg.stl"})
     out = package / "collision"
     hull = ["--method", "hull", "--limit-hull-vertices", "1000"]
     assert main(["collision", str(urdf), *hull, "--out", str(out)]) == 0
     before = _folder_state(out)
-    assert "meshes/leg.stl" in before
-    # only one link selected: the other's outputs would be lost
-    assert main(["collision", str(urdf), *hull, "--link", "hip", "--out", str(out)]) == 2
-    assert "leg" in capsys.readouterr().err
-    assert _folder_state(out) == before
-    # the leg's mesh turns bad: the link fails, its earlier outputs stay
+    # only the hip is made (with other parameters): the leg's outputs stay as they were
+    assert main(["collision", str(urdf), *hull, "--target", "2", "--link", "hip",
+                 "--out", str(out)]) == 0
+    after = _folder_state(out)
+    assert after["meshes/leg.stl"] == before["meshes/leg.stl"]
+    text = after["demo.collision.urdf"].decode()
+    assert "collision/meshes/leg.stl" in text and "collision/meshes/hip.stl" in text
+    reloaded = robotdesc.load(str(out / "demo.collision.urdf"))
+    assert [c.geometry.filename.rsplit("/", 1)[-1] for c in reloaded.link("leg").collisions] \
+        == ["leg.stl"]
+    capsys.readouterr()
+    assert main(["collision", str(urdf), *hull, "--link", "leg", "--out", str(out),
+                 "--check"]) == 0  # the kept link is still current for its own parameters
+    # the leg's mesh turns bad: the link fails (exit 1), its earlier outputs stay, and
+    # --check says they are stale
     soup = box_soup()
     soup[0, 0, 0] = np.nan
     write_binary_stl(package / "meshes" / "leg.stl", soup)
-    assert main(["collision", str(urdf), *hull, "--out", str(out)]) == 2
-    assert "nothing was written" in capsys.readouterr().err
+    assert main(["collision", str(urdf), *hull, "--out", str(out)]) == 1
+    assert _folder_state(out)["meshes/leg.stl"] == before["meshes/leg.stl"]
+    assert "collision/meshes/leg.stl" in (out / "demo.collision.urdf").read_text()
+    capsys.readouterr()
+    assert main(["collision", str(urdf), *hull, "--out", str(out), "--check"]) == 1
+    assert "leg" in capsys.readouterr().out
+
+
+def test_edited_earlier_outputs_of_a_link_not_made_now_are_never_overwritten(package,
+                                                                              capsys):
+    urdf = write_urdf(package, {"hip": "hip.stl", "leg": "leg.stl"})
+    out = package / "collision"
+    hull = ["--method", "hull", "--limit-hull-vertices", "1000"]
+    assert main(["collision", str(urdf), *hull, "--out", str(out)]) == 0
+    with open(out / "meshes" / "leg.stl", "ab") as stream:
+        stream.write(b"\0")  # the user edited it
+    before = _folder_state(out)
+    assert main(["collision", str(urdf), *hull, "--link", "hip", "--out", str(out)]) == 2
+    assert "meshes/leg.stl is missing or was edited" in capsys.readouterr().err
     assert _folder_state(out) == before
 
 

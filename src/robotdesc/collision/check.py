@@ -23,8 +23,13 @@ class Staleness:
     reason: str
 
 
-def check_outputs(plan: Plan, out_dir: str) -> list[Staleness]:
-    """Everything that makes `out_dir` out of date for `plan` (empty: up to date)."""
+def check_outputs(plan: Plan, out_dir: str, every_link: bool = True) -> list[Staleness]:
+    """Everything that makes `out_dir` out of date for `plan` (empty: up to date).
+
+    Args:
+        every_link: the plan covers every link with geometry (no `--link` selection), so a
+            manifest link outside it is gone; with a selection, other links are not judged.
+    """
     manifest = read_manifest(out_dir)
     if manifest is None:
         return [Staleness(out_dir, "no robotdesc-collision.json manifest: outputs missing")]
@@ -39,7 +44,7 @@ def check_outputs(plan: Plan, out_dir: str) -> list[Staleness]:
             found.append(Staleness(sources.link, "no collision geometry generated"))
         elif entry.get("key") != key:
             found.append(Staleness(sources.link, "sources or parameters changed"))
-    for link in manifest.links:
+    for link in manifest.links if every_link else ():
         if link not in planned:
             found.append(Staleness(link, "the link no longer has source geometry"))
     for name, digest in sorted(manifest.files.items()):

@@ -14,14 +14,16 @@ Layout in the output folder DIR:
                                      the links it leaves to the snippet)
     DIR/robotdesc-collision.json     the manifest (see manifest.py)
 
-Links that failed keep their original `<collision>` elements and get no files. The source
-files are only read, never written.
+Links that failed keep their original `<collision>` elements and get no files, unless an
+earlier run made outputs for them: those stay, as do the outputs of links not selected this
+time. The source files are only read, never written.
 """
 
 from __future__ import annotations
 
 import os
 import re
+from dataclasses import dataclass
 
 from lxml import etree
 
@@ -37,7 +39,7 @@ from robotdesc.collision.result import CollisionResult, MeshPart, PrimitivePart
 from robotdesc.collision.stl import stl_bytes
 from robotdesc.collision.xacro_patch import XacroPatch, build_patch
 from robotdesc.errors import InputError
-from robotdesc.model.elements import Box, Capsule, Cylinder, Sphere
+from robotdesc.model.elements import Box, Capsule, Cylinder, MeshRef, Sphere
 from robotdesc.source import Span
 
 
@@ -45,12 +47,67 @@ class OutputConflict(InputError):
     """An output would overwrite a file robotdesc did not write (or one a user edited)."""
 
 
-def planned_files(result: CollisionResult, urdf_xml: bytes, out_dir: str,
-                  from_xacro: bool) -> dict[str, bytes]:
-    """Every output file (relative path -> bytes), manifest excluded. Writes nothing; for
-    xacro sources it reads the source files the patch is made against."""
-    files: dict[str, bytes] = {}
+@dataclass(frozen=True)
+class Kept:
+    """Earlier outputs that stay: per link its (file name, part) elements, and the files.
+
+    A kept mesh element's part is the `MeshRef` read back (only its file name is used)."""
+
+    references: dict[str, list[tuple[str, object]]]
+    files: dict[str, bytes]
+
+
+def earlier_outputs(out_dir: str, old: Manifest, links: list[str], base: str,
+                    package: str | None) -> Kept:
+    """The outputs an earlier run wrote for `links`, read back from its URDF and files.
+
+    Raises:
+        OutputConflict: that URDF or a file of these links is missing or was edited.
+    """
+    from robotdesc.model.parse import parse_urdf
+
+    def current(name: str) -> bytes:
+        path = os.path.join(out_dir, name)
+        if name not in old.files or sha256_file(path) != old.files[name]:
+            raise OutputConflict(
+                f"the earlier outputs of {', '.join(links)} (not made in this run) cannot be "
+                f"kept: {name} is missing or was edited; nothing was written. Make those links "
+                f"too, or write to another --out", Span(path))
+        with open(path, "rb") as stream:
+            return stream.read()
+
+    urdf_name = f"{base}.collision.urdf"
+    earlier = parse_urdf(current(urdf_name), os.path.join(out_dir, urdf_name))
     references: dict[str, list[tuple[str, object]]] = {}
+    files: dict[str, bytes] = {}
+    for name in links:
+        link = earlier.link(name)
+        elements: list[tuple[str, object]] = []
+        for collision in link.collisions if link is not None else ():
+            geometry = collision.geometry
+            if isinstance(geometry, MeshRef):
+                relative = geometry.filename
+                if package and relative.startswith(package):
+                    relative = relative[len(package):]
+                files[relative] = current(relative)
+                elements.append((relative, geometry))
+            elif geometry is not None:
+                elements.append(("", PrimitivePart(geometry, collision.origin)))
+        references[name] = elements
+    return Kept(references, files)
+
+
+def planned_files(result: CollisionResult, urdf_xml: bytes, out_dir: str,
+                  from_xacro: bool, kept: Kept | None = None) -> dict[str, bytes]:
+    """Every output file (relative path -> bytes), manifest excluded. Writes nothing; for
+    xacro sources it reads the source files the patch is made against.
+
+    Args:
+        kept: links whose earlier outputs stay (see `earlier_outputs`), as their elements
+            and files.
+    """
+    files: dict[str, bytes] = dict(kept.files) if kept else {}
+    found: dict[str, list[tuple[str, object]]] = dict(kept.references) if kept else {}
     for outcome in result.outcomes:
         if not outcome.written:
             continue
@@ -64,7 +121,9 @@ def planned_files(result: CollisionResult, urdf_xml: bytes, out_dir: str,
                 elements.append((name, part))
             else:
                 elements.append(("", part))
-        references[outcome.report.link] = elements
+        found[outcome.report.link] = elements
+    references = {link.name: found[link.name] for link in result.robot.links
+                  if link.name in found}  # in the description's order
     base = _safe(result.robot.name or "robot")
     package = _package_prefix(out_dir)
     files[f"{base}.collision.urdf"] = _new_urdf(urdf_xml, references, package)
@@ -85,8 +144,11 @@ def write_outputs(result: CollisionResult, urdf_xml: bytes, out_dir: str, *,
     Raises:
         OutputConflict: `out_dir` holds the source meshes (without `allow_source_dir`), a
             planned file exists that robotdesc did not write (or that was edited since), or
-            a link with outputs from an earlier run was not made now (it failed or was not
-            selected: its outputs would be lost). Nothing is written then.
+            the earlier outputs of a link not made now (it failed, or was not selected) were
+            edited, so they cannot be kept. Nothing is written then.
+
+    Links with outputs from an earlier run that are not made now keep them (their files,
+    elements and manifest entry: `--check` still says whether they are current).
     """
     out_dir = os.path.abspath(out_dir)
     real = os.path.realpath(out_dir)
@@ -95,16 +157,13 @@ def write_outputs(result: CollisionResult, urdf_xml: bytes, out_dir: str, *,
                                     for d in source_dirs):
         raise OutputConflict("the output folder holds source meshes; choose another --out "
                              "(or pass --into-source-dir)", Span(out_dir))
-    files = planned_files(result, urdf_xml, out_dir, from_xacro)
     old = read_manifest(out_dir) or Manifest()
     written_links = {o.report.link for o in result.outcomes if o.written}
-    dropped = sorted(set(old.links) - written_links)
-    if dropped:
-        raise OutputConflict(
-            f"{len(dropped)} link(s) with outputs in this folder from an earlier run were not "
-            f"made now (failed, or not selected with --link): {', '.join(dropped)}; nothing "
-            f"was written, so those outputs are kept. Fix the failures (results made so far "
-            f"are cached) or write to another --out", Span(out_dir))
+    keep = [link.name for link in result.robot.links
+            if link.name in old.links and link.name not in written_links]
+    kept = earlier_outputs(out_dir, old, keep, _safe(result.robot.name or "robot"),
+                           _package_prefix(out_dir)) if keep else None
+    files = planned_files(result, urdf_xml, out_dir, from_xacro, kept)
     conflicts = []
     for name, data in files.items():
         path = os.path.join(out_dir, name)
@@ -132,9 +191,10 @@ def write_outputs(result: CollisionResult, urdf_xml: bytes, out_dir: str, *,
             os.unlink(path)
     manifest = Manifest(
         files={name: sha256_bytes(data) for name, data in files.items()},
-        links={o.report.link: {"key": o.key, "status": o.report.status,
-                               "method": o.report.method}
-               for o in result.outcomes if o.written},
+        links={**{name: old.links[name] for name in keep},
+               **{o.report.link: {"key": o.key, "status": o.report.status,
+                                  "method": o.report.method}
+                  for o in result.outcomes if o.written}},
         source=os.path.relpath(result.robot.source, out_dir) if result.robot.source else "",
         parameters=result.options.key_fields())
     write_atomically(os.path.join(out_dir, MANIFEST_NAME), manifest.to_json())

@@ -115,7 +115,7 @@ def run(ns: argparse.Namespace) -> int:
 
         plan = plan_links(robot, options, package_paths, package_map, ns.link,
                           use_cache=not ns.no_cache)
-        stale = check_outputs(plan, ns.out)
+        stale = check_outputs(plan, ns.out, every_link=ns.link is None)
         for item in stale:
             sys.stdout.write(f"{item.subject}: {item.reason}\n")
         if not stale:
