@@ -11,6 +11,7 @@ import argparse
 import logging
 import os
 import sys
+from dataclasses import dataclass
 from typing import Any, Sequence
 
 EXIT_OK, EXIT_FINDINGS, EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
@@ -240,21 +241,16 @@ def _apply_baseline(ns: argparse.Namespace, results: list) -> list:
 
 
 def _run_expand(ns: argparse.Namespace) -> int:
-    from robotdesc.config import discover_config, load_config
     from robotdesc.errors import UsageError
     from robotdesc.expansion import expand_file
     from robotdesc.model.write import urdf_text
     from robotdesc.source import Span
 
-    paths, args = split_inputs(ns.inputs)
-    if len(paths) != 1:
-        raise UsageError(f"expand takes one file, got {len(paths)}: {' '.join(paths) or '-'}")
-    source = paths[0]
-    config = load_config(ns.config) if ns.config else discover_config(source)
-    options = expand_options(ns, config.packages)
+    single = single_input(ns, "expand")
+    source = single.source
     if ns.output and same_file(ns.output, source):
         raise UsageError("refusing to overwrite the input file; choose another -o", Span(source))
-    expanded = expand_file(source, {**dict(config.args), **args}, options=options)
+    expanded = expand_file(source, single.args, options=single.options)
     urdf = urdf_text(expanded.xml, expanded.source)
     if not ns.output:
         sys.stdout.buffer.write(urdf)
@@ -331,6 +327,45 @@ def split_inputs(inputs: Sequence[str]) -> tuple[list[str], dict[str, str]]:
     if not paths:
         raise UsageError("no file given")
     return paths, args
+
+
+@dataclass(frozen=True)
+class SingleInput:
+    """The one description a command works on, with what its config says about it.
+
+    Attributes:
+        source: the file's path as given.
+        cli_args: the `name:=value` xacro arguments from the command line.
+        config: the config given with --config, or found from the file.
+        options: the expansion options (command line and the config's packages).
+    """
+
+    source: str
+    cli_args: dict[str, str]
+    config: Any
+    options: Any
+
+    @property
+    def args(self) -> dict[str, str]:
+        """The xacro arguments: the config's, overridden by the command line's."""
+        return {**dict(self.config.args), **self.cli_args}
+
+
+def single_input(ns: argparse.Namespace, verb: str) -> SingleInput:
+    """Read `ns.inputs` as one file plus xacro arguments, and load its config.
+
+    Raises:
+        UsageError: not exactly one file, a bad argument or a bad option.
+    """
+    from robotdesc.config import discover_config, load_config
+    from robotdesc.errors import UsageError
+
+    paths, args = split_inputs(ns.inputs)
+    if len(paths) != 1:
+        raise UsageError(f"{verb} takes one file, got {len(paths)}: {' '.join(paths)}")
+    source = paths[0]
+    config = load_config(ns.config) if ns.config else discover_config(source)
+    return SingleInput(source, args, config, expand_options(ns, config.packages))
 
 
 def _selectors(values: Sequence[str], flag: str) -> list[str]:

@@ -71,17 +71,14 @@ def run(ns: argparse.Namespace) -> int:
     import os
     from dataclasses import replace
 
-    from robotdesc.cli import EXIT_FINDINGS, EXIT_OK, expand_options, split_inputs
+    from robotdesc.cli import EXIT_FINDINGS, EXIT_OK, single_input
     from robotdesc.collision.limits import ENGINE_LIMITS
     from robotdesc.collision.options import CollisionOptions
-    from robotdesc.config import discover_config, load_config
     from robotdesc.errors import UsageError
     from robotdesc.expansion import expand_file
     from robotdesc.model.parse import parse_urdf
 
-    paths, args = split_inputs(ns.inputs)
-    if len(paths) != 1:
-        raise UsageError(f"collision takes one file, got {len(paths)}")
+    single = single_input(ns, "collision")
     if not ns.out and not ns.dry_run:
         raise UsageError("--out DIR is required (or --dry-run)")
     limits = ENGINE_LIMITS[ns.engine]
@@ -101,13 +98,10 @@ def run(ns: argparse.Namespace) -> int:
         raise UsageError(str(error)) from None
     if ns.jobs is not None and ns.jobs < 1:
         raise UsageError("--jobs must be at least 1")
-    source = paths[0]
-    config = load_config(ns.config) if ns.config else discover_config(source)
-    expand_options = expand_options(ns, config.packages)
-    expanded = expand_file(source, {**dict(config.args), **args}, options=expand_options)
+    expanded = expand_file(single.source, single.args, options=single.options)
     robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
-    package_paths = expand_options.package_paths
-    package_map = expand_options.package_map
+    package_paths = single.options.package_paths
+    package_map = single.options.package_map
 
     if ns.check:
         from robotdesc.collision.check import check_outputs

@@ -40,21 +40,15 @@ def run_inertia(ns: argparse.Namespace) -> int:
     """The handler: expand, parse, measure, print; exit 0 (2 on unreadable input)."""
     import dataclasses
 
-    from robotdesc.cli import expand_options, split_inputs, write_output
-    from robotdesc.config import discover_config, load_config
-    from robotdesc.errors import UsageError
+    from robotdesc.cli import single_input, write_output
     from robotdesc.expansion import expand_file
     from robotdesc.inertia.table import inertia_table, render_table
     from robotdesc.mesh.context import MeshContext
     from robotdesc.model.parse import parse_urdf
 
-    paths, args = split_inputs(ns.inputs)
-    if len(paths) != 1:
-        raise UsageError(f"inertia takes one file, got {len(paths)}")
-    source = paths[0]
-    config = load_config(ns.config) if ns.config else discover_config(source)
-    options = expand_options(ns, config.packages)
-    expanded = expand_file(source, {**dict(config.args), **args}, options=options)
+    single = single_input(ns, "inertia")
+    source, config, options = single.source, single.config, single.options
+    expanded = expand_file(source, single.args, options=options)
     robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
     settings = config.meshes if not ns.source else dataclasses.replace(
         config.meshes, inertia_source=ns.source)

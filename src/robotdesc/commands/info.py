@@ -32,23 +32,17 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
 
 def load_robot(ns: argparse.Namespace, verb: str) -> tuple[Any, Any, str]:
     """Expand and parse the one input file; returns (robot, mesh resolver, source path)."""
-    from robotdesc.cli import expand_options, split_inputs
-    from robotdesc.config import discover_config, load_config
-    from robotdesc.errors import UsageError
+    from robotdesc.cli import single_input
     from robotdesc.expansion import expand_file
     from robotdesc.kinematics.resolve import mesh_resolver, package_lookup
     from robotdesc.model.parse import parse_urdf
 
-    paths, args = split_inputs(ns.inputs)
-    if len(paths) != 1:
-        raise UsageError(f"{verb} takes one file, got {len(paths)}: {' '.join(paths)}")
-    source = paths[0]
-    config = load_config(ns.config) if ns.config else discover_config(source)
-    options = expand_options(ns, config.packages)
-    expanded = expand_file(source, {**dict(config.args), **args}, options=options)
+    single = single_input(ns, verb)
+    options = single.options
+    expanded = expand_file(single.source, single.args, options=options)
     robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
     find = package_lookup(expanded.source, options.package_paths, options.package_map)
-    return robot, mesh_resolver(robot, find), source
+    return robot, mesh_resolver(robot, find), single.source
 
 
 def parse_positions(items: list[str]) -> dict[str, float]:

@@ -43,14 +43,11 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
 
 def run_sim(ns: argparse.Namespace) -> int:
     """The handler: load, settle, time, print; exit 0 pass, 1 fail, 2 input error."""
-    from robotdesc.cli import expand_options, split_inputs
-    from robotdesc.config import discover_config, load_config
+    from robotdesc.cli import single_input
     from robotdesc.errors import InputError, UsageError
     from robotdesc.sim.backend import import_mujoco
 
-    paths, args = split_inputs(ns.inputs)
-    if len(paths) != 1:
-        raise UsageError(f"sim takes one file, got {len(paths)}")
+    single = single_input(ns, "sim")
     if not ns.seconds > 0 or not ns.drop_height >= 0:
         raise UsageError("--seconds must be positive and --drop-height >= 0")
     import_mujoco()  # fail early, with the install hint, before any expansion work
@@ -63,10 +60,8 @@ def run_sim(ns: argparse.Namespace) -> int:
     from robotdesc.sim.run import SimOptions, compare_rtf, settle_robot
     from robotdesc.sim.settle import SettleOptions
 
-    source = paths[0]
-    config = load_config(ns.config) if ns.config else discover_config(source)
-    expand_options = expand_options(ns, config.packages)
-    loaded = load_sim_input(source, {**dict(config.args), **args}, expand_options)
+    expand_options = single.options
+    loaded = load_sim_input(single.source, single.args, expand_options)
     hold = HoldOptions(mode="passive" if ns.passive else "position")
     options = SimOptions(settle=SettleOptions(seconds=ns.seconds, hold=hold),
                          scene=SceneOptions(drop_height=ns.drop_height,

@@ -54,30 +54,26 @@ def load_target(ns: argparse.Namespace, lint: bool = True) -> tuple[Any, Any, An
     Raises:
         UsageError: not exactly one file, or the output would overwrite the input.
     """
-    from robotdesc.cli import expand_options, same_file, split_inputs
-    from robotdesc.config import discover_config, load_config
+    from robotdesc.cli import same_file, single_input
     from robotdesc.errors import UsageError
     from robotdesc.source import Span
 
-    paths, args = split_inputs(ns.inputs)
-    if len(paths) != 1:
-        raise UsageError(f"{ns.command} takes one file, got {len(paths)}")
-    source = paths[0]
+    single = single_input(ns, ns.command)
+    source, options = single.source, single.options
     if same_file(ns.output, source):
         raise UsageError("refusing to overwrite the input file; choose another -o", Span(source))
     if ns.max_faces is not None and ns.max_faces < 1:
         raise UsageError("--max-faces must be at least 1")
-    config = load_config(ns.config) if ns.config else discover_config(source)
-    options = expand_options(ns, config.packages)
     if lint:
         from robotdesc.linting.driver import lint_file
 
-        result = lint_file(source, config, args=args or None, expand_options=options)
+        result = lint_file(source, single.config, args=single.cli_args or None,
+                           expand_options=options)
         return result.robot, result, options
     from robotdesc.expansion import expand_file
     from robotdesc.model.parse import parse_urdf
 
-    expanded = expand_file(source, {**dict(config.args), **args}, options=options)
+    expanded = expand_file(source, single.args, options=options)
     return parse_urdf(expanded.xml, expanded.source, expanded.files), None, options
 
 
