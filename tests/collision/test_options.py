@@ -28,3 +28,21 @@ def test_a_parameter_the_method_reads_changes_its_key(method, change):
 def test_unknown_decimator_is_a_value_error():
     with pytest.raises(ValueError, match="unknown decimator"):
         CollisionOptions(decimator="blender").validated()
+
+
+def test_the_cli_offers_exactly_the_methods_and_decimators():
+    """The CLI spells the choices out (importing the collision package at start-up would
+    slow every command); they must stay the options' own."""
+    import argparse
+
+    from robotdesc.collision.options import DECIMATORS, METHODS
+    from robotdesc.commands import collision
+
+    common, expansion = argparse.ArgumentParser(add_help=False), argparse.ArgumentParser(
+        add_help=False)
+    parser = argparse.ArgumentParser()
+    collision.register(parser.add_subparsers(), common=common, expansion=expansion)
+    [sub] = parser._subparsers._group_actions[0].choices.values()
+    choices = {action.dest: tuple(action.choices) for action in sub._actions if action.choices}
+    assert choices["method"] == METHODS
+    assert choices["decimator"] == DECIMATORS
