@@ -7,7 +7,6 @@ import os
 from pathlib import Path
 
 import numpy as np
-import pytest
 
 import robotdesc
 from collision.conftest import box_soup, write_urdf
@@ -189,7 +188,6 @@ def test_second_run_is_served_from_the_cache(package, tmp_path):
 
 
 def test_primitive_and_coacd_write_urdf_elements(package):
-    pytest.importorskip("manifold3d")
     urdf = write_urdf(package, {"hip": "hip.stl"})
     out = package / "prim"
     main(["collision", str(urdf), "--method", "primitive", "--out", str(out)])
