@@ -1,9 +1,11 @@
 """The pre-commit hook (.pre-commit-hooks.yaml) runs on a sample description repository.
 
 pre-commit installs the hook from a local clone of robotdesc (a temporary git repository
-holding this working tree's sources). No network: the hook's virtualenv sees the system
-site-packages (where robotdesc's dependencies are installed) and pip builds robotdesc
-without build isolation and without an index. About 12 s (building the hook's virtualenv).
+holding this working tree's sources). No network: pip builds robotdesc into the hook's
+virtualenv without build isolation, an index or its dependencies (`install-hooks`); the hook
+then runs with PYTHONPATH naming the site-packages of the interpreter running the tests (a
+venv's or the system's: where robotdesc's dependencies were installed), so the test never
+depends on the base interpreter. About 12 s (building the hook's virtualenv).
 """
 
 from __future__ import annotations
@@ -12,6 +14,7 @@ import os
 import shutil
 import subprocess
 import sys
+import sysconfig
 from pathlib import Path
 
 import pytest
@@ -71,10 +74,17 @@ def test_precommit_runs_the_hook_on_a_sample_repository(tmp_path) -> None:
     git(sample, "init", "-q")
     git(sample, "add", ".")
 
-    env = dict(os.environ, PRE_COMMIT_HOME=str(tmp_path / "pre-commit-home"),
-               VIRTUALENV_SYSTEM_SITE_PACKAGES="1", PIP_NO_INDEX="1",
-               PIP_NO_BUILD_ISOLATION="0", PIP_DISABLE_PIP_VERSION_CHECK="1")
-    env.pop("PYTHONPATH", None)
+    install_env = dict(os.environ, PRE_COMMIT_HOME=str(tmp_path / "pre-commit-home"),
+                       PIP_NO_INDEX="1", PIP_NO_DEPS="1", PIP_NO_BUILD_ISOLATION="0",
+                       PIP_DISABLE_PIP_VERSION_CHECK="1")
+    install_env.pop("PYTHONPATH", None)
+    installed = subprocess.run([sys.executable, "-m", "pre_commit", "install-hooks"], cwd=sample,
+                               env=install_env, capture_output=True, text=True, check=False)
+    assert installed.returncode == 0, installed.stdout + installed.stderr
+    # The running interpreter's own site-packages (in a venv, not the base interpreter's):
+    # the hook finds robotdesc's dependencies there.
+    site = dict.fromkeys(sysconfig.get_paths()[key] for key in ("purelib", "platlib"))
+    env = dict(install_env, PYTHONPATH=os.pathsep.join(site))
     command = [sys.executable, "-m", "pre_commit", "run", "--all-files", "--color", "never"]
     failing = subprocess.run(command, cwd=sample, env=env, capture_output=True, text=True,
                              check=False)
