@@ -16,7 +16,7 @@ PACKAGE = Path(__file__).resolve().parents[2] / "robots" / "engineer_description
 TOP = PACKAGE / "urdf" / "engineer.urdf.xacro"
 MESH_DIR = PACKAGE / "meshes" / "visual"
 TABLE_I_MASS = 16.3  # kg, Table I of the second paper
-GRIPPER_MASS = 2 * (0.04 + 0.03 + 0.03)  # kg, urdf/properties.xacro
+GRIPPER_MASS = 0.05 + 2 * (0.04 + 0.03 + 0.03)  # kg, urdf/properties.xacro (base + two sides)
 
 
 # ----------------------------------------------------------------------------- helpers
@@ -85,10 +85,17 @@ def test_cmake_installs_the_share_folders_for_both_build_systems():
         assert (PACKAGE / folder).is_dir()
 
 
-def test_track_controllers_yaml_is_current(scripts):
-    make = importlib.import_module("make_track_controllers")
-    expected = make.tracks_yaml(56, 50, scripts.read_properties())
-    assert (PACKAGE / "config" / "engineer_tracks.yaml").read_text() == expected
+CONTROL = PACKAGE.parent / "engineer_control"
+
+
+def test_track_controllers_yaml_is_current():
+    sys.path.insert(0, str(CONTROL / "scripts"))
+    try:
+        make = importlib.import_module("make_controllers")
+    finally:
+        sys.path.remove(str(CONTROL / "scripts"))
+    assert (CONTROL / "config" / "engineer_tracks.yaml").read_text() == make.ros1_tracks_yaml(56, 50)
+    assert (CONTROL / "config" / "engineer_ros2_controllers.yaml").read_text() == make.ros2_yaml(56, 50)
 
 
 def test_readme_polygon_table_matches_the_meshes():
@@ -268,8 +275,9 @@ def test_transmissions_cover_every_driven_joint(robot):
 
 def test_references_meshes_and_materials_exist(robot):
     links = {link.get("name") for link in robot.findall("link")}
+    joints = {joint.get("name") for joint in robot.findall("joint")}
     for gazebo in robot.findall("gazebo[@reference]"):
-        assert gazebo.get("reference") in links
+        assert gazebo.get("reference") in links | joints
     assert robot.find("gazebo[@reference='head_link']/light").get("type") == "spot"
     materials = {m.get("name") for m in robot.findall("material")}
     for material in robot.findall("link/visual/material"):
@@ -284,7 +292,7 @@ def test_references_meshes_and_materials_exist(robot):
 
 def test_track_controllers_name_existing_wheels(robot):
     yaml = pytest.importorskip("yaml")
-    config = yaml.safe_load((PACKAGE / "config" / "engineer_tracks.yaml").read_text())
+    config = yaml.safe_load((CONTROL / "config" / "engineer_tracks.yaml").read_text())
     joints = {j.get("name") for j in _joints(robot)}
     for controller in config.values():
         assert set(controller["left_wheel"]) | set(controller["right_wheel"]) <= joints
