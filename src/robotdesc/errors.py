@@ -62,6 +62,10 @@ class SandboxViolation(InputError):
     """The xacro file tried something safe mode forbids (escaping the package, os access)."""
 
 
+class SandboxUnavailable(InputError):
+    """The xacro worker cannot be confined on this system; untrusted expansion is refused."""
+
+
 class LimitExceeded(InputError):
     """The expansion hit a time, memory, recursion or size limit."""
 
@@ -72,3 +76,20 @@ class ConfigError(InputError):
 
 class UsageError(InputError):
     """The command line was invalid (unknown rule code, bad argument)."""
+
+
+class OutputError(InputError):
+    """An output cannot be written where asked: the path is an input of the run, its folder
+    is a file or read-only, or it would leave the output folder.
+
+    Args:
+        path: the output path as given.
+        reason: why, in a user's words (the message is "cannot write PATH: REASON" unless
+            `message` is given).
+        message: the whole message, when it is not of that form.
+    """
+
+    def __init__(self, path: str, reason: str, message: str | None = None) -> None:
+        super().__init__(message or f"cannot write {path}: {reason}")
+        self.path = path
+        self.reason = reason

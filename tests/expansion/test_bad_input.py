@@ -77,6 +77,8 @@ def test_the_worker_environment_is_clean(tmp_path, monkeypatch):
     with pytest.raises(errors.ExpansionError) as caught:
         expand_file(source, options=ExpandOptions(use_cache=False))
     assert "allowlist" in caught.value.message
+    assert "set in your environment but was not passed" in caught.value.message
+    assert "add --env ROBOTDESC_SECRET_TOKEN" in caught.value.message
     assert "hunter2" not in str(caught.value)
     assert os.environ["ROBOTDESC_SECRET_TOKEN"] == "hunter2"
 

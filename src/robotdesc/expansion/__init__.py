@@ -6,13 +6,16 @@
 
 from __future__ import annotations
 
+import dataclasses
+import difflib
 import logging
+import os
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Mapping
 
 from robotdesc import errors
-from robotdesc.expansion.result import Expanded, ResolvedPackage
+from robotdesc.expansion.result import Expanded, ExpansionNote, ResolvedPackage
 from robotdesc.source import Span
 
 __all__ = ["ExpandOptions", "Expanded", "ResolvedPackage", "expand_file", "is_xacro"]
@@ -40,6 +43,8 @@ class ExpandOptions:
             in addition to DEFAULT_ENV_ALLOWLIST.
         use_cache: reuse a cached expansion when no input changed.
         cache_dir: the cache root (default: robotdesc.cache_dir.default_cache_dir()).
+        unchecked_args: argument names not reported when no `<xacro:arg>` declares them
+            (the config's default arguments, which apply to every target).
     """
 
     package_paths: tuple[str, ...] = ()
@@ -51,11 +56,23 @@ class ExpandOptions:
     env_allowlist: tuple[str, ...] = ()
     use_cache: bool = True
     cache_dir: str | None = None
+    unchecked_args: tuple[str, ...] = ()
 
 
 def is_xacro(path: Path, head: bytes) -> bool:
     """True when the file needs xacro: a .xacro name or xacro tags in its text."""
     return ".xacro" in path.name or b"<xacro:" in head
+
+
+_UNICODE_BOMS = (b"\xef\xbb\xbf", b"\xff\xfe", b"\xfe\xff")
+
+
+def looks_binary(data: bytes) -> bool:
+    """True for data that is no text a description could be written in (an STL, an image)."""
+    head = data[:8192]
+    if head.startswith(_UNICODE_BOMS[1:]):  # UTF-16 XML has NUL bytes but is text
+        return False
+    return b"\x00" in head
 
 
 def _read_checked(path: Path) -> bytes:
@@ -66,9 +83,14 @@ def _read_checked(path: Path) -> bytes:
     if path.stat().st_size > MAX_URDF_BYTES:
         raise errors.LimitExceeded(f"file larger than {MAX_URDF_BYTES} bytes", Span(str(path)))
     try:
-        return path.read_bytes()
+        data = path.read_bytes()
     except OSError as exc:
         raise errors.InputError(f"cannot read: {exc.strerror}", Span(str(path))) from exc
+    if looks_binary(data):
+        kind = f" ({path.suffix})" if path.suffix else ""
+        raise errors.InputError(f"binary data{kind}, not a URDF or xacro description",
+                                Span(str(path)))
+    return data
 
 
 def expand_file(path: str | Path, args: Mapping[str, str] | None = None, *,
@@ -86,8 +108,6 @@ def expand_file(path: str | Path, args: Mapping[str, str] | None = None, *,
     Raises:
         InputError: the file cannot be expanded; its subclasses say why and where.
     """
-    import os
-
     from robotdesc.expansion import cache
     from robotdesc.expansion.packages import PackageResolverConfig
     from robotdesc.expansion.runner import WorkerLimits, run_worker
@@ -116,13 +136,42 @@ def expand_file(path: str | Path, args: Mapping[str, str] | None = None, *,
         if hit is not None:
             log.debug("expansion cache hit for %s", path)
             _log_packages(hit)
-            return hit
+            return _with_notes(hit, args, options)
+    unpassed = () if options.trusted else tuple(n for n in os.environ if n not in env)
     expanded = run_worker(path, args, resolver, trusted=options.trusted, env=env, limits=limits,
-                          extra_roots=tuple(p for p in options.package_paths))
+                          env_names=unpassed)
     _log_packages(expanded)
     if key is not None and cache_root is not None:
         cache.store(cache_root, key, expanded)
-    return expanded
+    return _with_notes(expanded, args, options)
+
+
+def _with_notes(expanded: Expanded, args: Mapping[str, str], options: ExpandOptions) -> Expanded:
+    """Attach what this run should say about its inputs, and say it on stderr (logged)."""
+    notes: list[ExpansionNote] = []
+    seen = set()
+    for used in expanded.env_defaults:
+        if options.trusted or used.name not in os.environ or (used.name, used.span) in seen:
+            continue
+        seen.add((used.name, used.span))
+        notes.append(ExpansionNote(
+            "env-not-passed", used.name,
+            f"{used.name} is set in your environment but was not passed; the default "
+            f"'{used.default}' was used; add --env {used.name}", used.span))
+    declared = dict(reversed(expanded.declared_args))  # the first declaration wins
+    for name in sorted(args):
+        if name in declared or name in options.unchecked_args:
+            continue
+        close = difflib.get_close_matches(name, list(declared), 1)
+        hint = f"; did you mean '{close[0]}'?" if close else (
+            "; the description declares no arguments" if not declared else "")
+        notes.append(ExpansionNote(
+            "unknown-argument", name,
+            f"xacro argument '{name}' is not declared by any <xacro:arg>{hint}",
+            declared[close[0]] if close else Span(expanded.source, 1)))
+    for note in notes:
+        log.warning("%s: %s", note.span, note.message)
+    return dataclasses.replace(expanded, notes=tuple(notes)) if notes else expanded
 
 
 def _log_packages(expanded: Expanded) -> None:

@@ -3,7 +3,10 @@
 An entry is keyed by the top file, the arguments, the resolver and sandbox settings, the
 allowed environment, and the versions of xacro, robotdesc and Python. It records the
 SHA-256 of every file the expansion read; a lookup re-hashes them and misses when any
-changed. Entries are written atomically; an unreadable entry is a miss, never an error.
+changed. Entries are written atomically and record their own key; an entry stored under
+another key, not a regular file, larger than `MAX_ENTRY_BYTES` or unreadable is a miss,
+never an error (see `robotdesc.cache_dir.read_regular_file`). A `cache_dir` of None
+(caches off) reads and writes nothing.
 """
 
 from __future__ import annotations
@@ -12,17 +15,20 @@ import dataclasses
 import hashlib
 import json
 import logging
+import os
+import stat
 import sys
 from pathlib import Path
 
-from robotdesc.atomic import write_atomically
-from robotdesc.expansion.result import Expanded, ResolvedPackage
-from robotdesc.rules.registry import MacroRecursion
+from robotdesc.cache_dir import read_regular_file, write_entry
+from robotdesc.expansion.result import Expanded, MacroRecursion, ResolvedPackage, decode_input_facts
 from robotdesc.source import Span
 
 log = logging.getLogger(__name__)
 
-_FORMAT = 1
+_FORMAT = 3  # 2: declared_args and env_defaults; 3: the key inside
+#: The largest entry read (an expanded document of a very large robot is a few MB).
+MAX_ENTRY_BYTES = 64 << 20
 
 
 def _versions() -> dict[str, str]:
@@ -48,47 +54,66 @@ def cache_key(settings: dict) -> str:
 
 
 def file_digest(path: str) -> str | None:
+    """SHA-256 of a regular file's bytes; None when it is missing, unreadable or not a
+    regular file (opened without blocking: a FIFO listed by an entry never hangs)."""
     try:
-        with open(path, "rb") as stream:
-            return hashlib.file_digest(stream, "sha256").hexdigest() \
-                if hasattr(hashlib, "file_digest") else hashlib.sha256(stream.read()).hexdigest()
+        handle = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)
     except OSError:
         return None
+    try:
+        if not stat.S_ISREG(os.fstat(handle).st_mode):
+            return None
+        digest = hashlib.sha256()
+        while chunk := os.read(handle, 1 << 20):
+            digest.update(chunk)
+        return digest.hexdigest()
+    except OSError:
+        return None
+    finally:
+        os.close(handle)
 
 
 def _entry_path(cache_dir: Path, key: str) -> Path:
     return cache_dir / "expand" / key[:2] / f"{key}.json"
 
 
-def load(cache_dir: Path, key: str) -> Expanded | None:
-    """The cached expansion for `key`, or None when absent, stale or unreadable."""
+def load(cache_dir: Path | None, key: str) -> Expanded | None:
+    """The cached expansion for `key`, or None when absent, stale, unusable or off."""
+    if cache_dir is None:
+        return None
     entry = _entry_path(cache_dir, key)
+    data = read_regular_file(entry, MAX_ENTRY_BYTES)
+    if data is None:
+        return None
     try:
-        record = json.loads(entry.read_text("utf-8"))
+        record = json.loads(data)
+        if record["key"] != key:
+            log.debug("expansion cache: %s was stored under another key", entry)
+            return None
         for path, digest in record["inputs"].items():
             if file_digest(path) != digest:
                 log.debug("expansion cache: %s changed", path)
                 return None
         return _decode(record["expanded"])
-    except FileNotFoundError:
-        return None
-    except (OSError, ValueError, KeyError, TypeError) as exc:
+    except (ValueError, KeyError, TypeError, AttributeError) as exc:
         log.debug("expansion cache: ignoring unreadable entry %s (%s)", entry, exc)
         return None
 
 
-def store(cache_dir: Path, key: str, expanded: Expanded) -> None:
-    """Record `expanded` under `key` with the digests of the files it read."""
+def store(cache_dir: Path | None, key: str, expanded: Expanded) -> None:
+    """Record `expanded` under `key` with the digests of the files it read (None: off)."""
+    if cache_dir is None:
+        return
     inputs = {}
     for path in dict.fromkeys([*expanded.files, *expanded.files_read]):
         digest = file_digest(path)
         if digest is None:
             return  # an input vanished: do not cache
         inputs[path] = digest
-    record = {"inputs": inputs, "expanded": _encode(expanded)}
+    record = {"key": key, "inputs": inputs, "expanded": _encode(expanded)}
     entry = _entry_path(cache_dir, key)
     try:
-        write_atomically(entry, json.dumps(record).encode("utf-8"))
+        write_entry(entry, json.dumps(record).encode("utf-8"))
     except OSError as exc:
         log.warning("expansion cache: cannot write %s (%s)", entry, exc)
 
@@ -109,4 +134,5 @@ def _decode(data: dict) -> Expanded:
         packages=tuple(ResolvedPackage(**p) for p in data["packages"]),
         macro_recursion=tuple(MacroRecursion(m["macro"], m["depth"], span(m["defined_at"]),
                                              span(m["called_at"])) for m in data["macro_recursion"]),
-        from_xacro=data["from_xacro"], args=tuple(tuple(a) for a in data["args"]))
+        from_xacro=data["from_xacro"], args=tuple(tuple(a) for a in data["args"]),
+        **decode_input_facts(data))

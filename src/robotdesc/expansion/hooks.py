@@ -17,6 +17,7 @@ import xml.dom.expatbuilder
 from dataclasses import dataclass, field
 from typing import Callable
 
+from robotdesc.expansion.packages import split_package_uri
 from robotdesc.source import PROVENANCE_ATTR, compress_chain
 
 _ELEMENT = xml.dom.Node.ELEMENT_NODE
@@ -48,6 +49,9 @@ class ExpansionState:
         last_src: the provenance value of the node most recently touched (for error locations).
         error_src: the location captured when an error first passed through a hook.
         recursion: per macro, (max depth, definition src, outermost call src).
+        declared_args: every `<xacro:arg>` evaluated, name -> its src.
+        env_defaults: `$(optenv NAME default)` lookups of a variable that was not passed,
+            as (name, default used, src); the parent knows whether NAME was set.
     """
 
     max_macro_depth: int
@@ -56,6 +60,8 @@ class ExpansionState:
     last_src: str = ""
     error_src: tuple[str, tuple[str, ...]] | None = None
     recursion: dict[str, tuple[int, str, str]] = field(default_factory=dict)
+    declared_args: dict[str, str] = field(default_factory=dict)
+    env_defaults: list[tuple[str, str, str]] = field(default_factory=list)
     _depth: dict[str, int] = field(default_factory=dict)
 
     def file_index(self, path: str) -> int:
@@ -221,6 +227,8 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
     def check_attrs(tag, required, optional):
         src = tag.getAttribute(PROVENANCE_ATTR)
         state.last_src = src.split(";", 1)[0] or state.last_src
+        if tag.tagName == "xacro:arg" and tag.hasAttribute("name"):
+            state.declared_args.setdefault(tag.getAttribute("name"), state.last_src)
         if not src:
             return original_check_attrs(tag, required, optional)
         tag.removeAttribute(PROVENANCE_ATTR)
@@ -232,8 +240,6 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
 
     def abs_filename_spec(filename_spec):
         if isinstance(filename_spec, str) and filename_spec.startswith("package://"):
-            from robotdesc.expansion.packages import split_package_uri
-
             package, rel, _ = split_package_uri(filename_spec)
             return os.path.join(find_package(package), rel)
         return original_abs_filename(filename_spec)
@@ -251,19 +257,44 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
     subst._eval_dict["find"] = eval_find
     xacro._global_symbols.setdefault("find", eval_find)  # ${find('pkg')}, as ROS 2 files use
 
+    def xacro_arg(name):  # ${xacro.arg('name')}: the same error as $(arg name)
+        try:
+            return xacro.substitution_args_context["arg"][name]
+        except KeyError:
+            raise subst.ArgException(name) from None
 
-def install_environment(env: dict[str, str], safe: bool) -> None:
-    """Make `$(env)`/`$(optenv)` see only `env` (the allowlisted variables in safe mode)."""
+    namespace = xacro._global_symbols.get("xacro")
+    if isinstance(namespace, dict):
+        namespace["arg"] = xacro_arg
+
+
+def install_environment(env: dict[str, str], safe: bool, state: ExpansionState,
+                        set_names: frozenset[str] = frozenset()) -> None:
+    """Make `$(env)`/`$(optenv)` see only `env` (the allowlisted variables in safe mode).
+
+    Args:
+        env: the variables the expansion may read.
+        safe: the sandbox is on (the error message names --env).
+        state: records the optenv defaults used for variables that were not passed.
+        set_names: names (never values) of the variables set in the caller's environment.
+    """
     import xacro.substitution_args as subst
 
     def eval_env(name):
         if name in env:
             return env[name]
+        if safe and name in set_names:
+            raise subst.SubstitutionException(
+                f"{name} is set in your environment but was not passed (safe mode passes "
+                f"only the allowlist); add --env {name}")
         hint = " (not in the safe-mode allowlist; add it with --env NAME or use --trusted)" if safe else ""
         raise subst.SubstitutionException(f"environment variable {name} is not set{hint}")
 
     def eval_optenv(name, default=""):
-        return env.get(name, default)
+        if name in env:
+            return env[name]
+        state.env_defaults.append((name, default, state.last_src))
+        return default
 
     subst._eval_env = eval_env
     subst._eval_optenv = eval_optenv

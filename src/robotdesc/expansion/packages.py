@@ -147,13 +147,27 @@ class PackageResolverConfig:
 class PackageResolver:
     """The resolver chain. `find(name)` returns the first hit and remembers it."""
 
-    def __init__(self, config: PackageResolverConfig) -> None:
+    def __init__(self, config: PackageResolverConfig,
+                 known: Sequence[ResolvedPackage] | None = None) -> None:
+        """Args:
+            config: the settings of the chain.
+            known: the result of `candidates()` computed elsewhere (the xacro worker gets
+                it from the parent): `find` then reads no file and parses no manifest.
+        """
         self.config = config
         self._resolved: dict[str, ResolvedPackage] = {}
         self._explicit: dict[str, Path] | None = None
         self._workspace: dict[str, Path] | None = None
         self._ros_path: dict[str, Path] | None = None
-        self.enclosing = enclosing_package(config.origin)
+        self._known: dict[str, ResolvedPackage] | None = None
+        if known is None:
+            self.enclosing = enclosing_package(config.origin)
+        else:
+            self._known = {}
+            for package in known:
+                self._known.setdefault(package.name, package)
+            found = next((p for p in known if p.source == "enclosing"), None)
+            self.enclosing = (found.name, Path(found.path)) if found else None
 
     @property
     def resolved(self) -> tuple[ResolvedPackage, ...]:
@@ -173,11 +187,38 @@ class PackageResolver:
             places.append("AMENT_PREFIX_PATH")
         return tuple(places)
 
+    def candidates(self) -> tuple[ResolvedPackage, ...]:
+        """Every package `find` can return, crawling every source of the chain now.
+
+        In the order of the chain (the first entry of a name is the one `find` returns);
+        a folder answering to several names appears once per name. After this call, `find`
+        reads no manifest (the crawls are remembered).
+        """
+        found: list[ResolvedPackage] = []
+        for name, (path, source) in self._explicit_packages().items():
+            found.append(ResolvedPackage(name, str(path), source))
+        if self.enclosing:
+            for name in _names_of(*self.enclosing):
+                found.append(ResolvedPackage(name, str(self.enclosing[1]), "enclosing"))
+            for name, path in self._workspace_packages().items():
+                found.append(ResolvedPackage(name, str(path), "workspace"))
+        for name, path in self._ros_path_packages().items():
+            found.append(ResolvedPackage(name, str(path), "ROS_PACKAGE_PATH"))
+        for prefix in filter(None, self.config.ament_prefix_path.split(os.pathsep)):
+            share = Path(prefix) / "share"
+            try:
+                folders = sorted(p for p in share.iterdir() if p.is_dir())
+            except OSError:
+                continue
+            found.extend(ResolvedPackage(p.name, str(p.resolve()), "AMENT_PREFIX_PATH")
+                         for p in folders)
+        return tuple(found)
+
     def find(self, name: str) -> ResolvedPackage | None:
         """The package called `name`, or None when no resolver knows it."""
         if name in self._resolved:
             return self._resolved[name]
-        hit = self._search(name)
+        hit = self._known.get(name) if self._known is not None else self._search(name)
         if hit is not None:
             self._resolved[name] = hit
             log.info("package %s -> %s (from %s)", name, hit.path, hit.source)
@@ -190,23 +231,31 @@ class PackageResolver:
         if self.enclosing and name in _names_of(*self.enclosing):
             return ResolvedPackage(name, str(self.enclosing[1]), "enclosing")
         if self.enclosing:
-            if self._workspace is None:
-                self._workspace = crawl_packages(workspace_root(self.enclosing[1]))
-            if name in self._workspace:
-                return ResolvedPackage(name, str(self._workspace[name]), "workspace")
-        if self.config.ros_package_path:
-            if self._ros_path is None:
-                self._ros_path = {}
-                for entry in self.config.ros_package_path.split(os.pathsep):
-                    for pkg, folder in crawl_packages(Path(entry)).items() if entry else ():
-                        self._ros_path.setdefault(pkg, folder)
-            if name in self._ros_path:
-                return ResolvedPackage(name, str(self._ros_path[name]), "ROS_PACKAGE_PATH")
+            workspace = self._workspace_packages()
+            if name in workspace:
+                return ResolvedPackage(name, str(workspace[name]), "workspace")
+        ros_path = self._ros_path_packages()
+        if name in ros_path:
+            return ResolvedPackage(name, str(ros_path[name]), "ROS_PACKAGE_PATH")
         for prefix in filter(None, self.config.ament_prefix_path.split(os.pathsep)):
             share = Path(prefix) / "share" / name
             if (share / "package.xml").is_file() or share.is_dir():
                 return ResolvedPackage(name, str(share.resolve()), "AMENT_PREFIX_PATH")
         return None
+
+    def _workspace_packages(self) -> dict[str, Path]:
+        if self._workspace is None:
+            self._workspace = crawl_packages(workspace_root(self.enclosing[1])) \
+                if self.enclosing else {}
+        return self._workspace
+
+    def _ros_path_packages(self) -> dict[str, Path]:
+        if self._ros_path is None:
+            self._ros_path = {}
+            for entry in filter(None, self.config.ros_package_path.split(os.pathsep)):
+                for pkg, folder in crawl_packages(Path(entry)).items():
+                    self._ros_path.setdefault(pkg, folder)
+        return self._ros_path
 
     def _explicit_packages(self) -> dict[str, tuple[Path, str]]:
         if self._explicit is None:

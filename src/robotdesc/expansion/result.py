@@ -3,8 +3,59 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
-from robotdesc.rules.registry import MacroRecursion
+from robotdesc.source import Span
+
+
+@dataclass(frozen=True)
+class MacroRecursion:
+    """How deep one macro recursed during expansion.
+
+    Attributes:
+        macro: the macro's name.
+        depth: the deepest nesting of the macro within itself.
+        defined_at: where the macro is defined.
+        called_at: the outermost call site of the deepest chain.
+    """
+
+    macro: str
+    depth: int
+    defined_at: Span
+    called_at: Span | None = None
+
+
+@dataclass(frozen=True)
+class EnvDefault:
+    """An `$(optenv NAME default)` that used its default because NAME was not passed.
+
+    Attributes:
+        name: the environment variable.
+        default: the value used instead.
+        span: where the lookup is written.
+    """
+
+    name: str
+    default: str
+    span: Span
+
+
+@dataclass(frozen=True)
+class ExpansionNote:
+    """Something about the expansion's inputs the URDF does not show (rules report it).
+
+    Attributes:
+        kind: "env-not-passed" (a variable set in the caller's environment was not passed)
+            or "unknown-argument" (a `name:=value` no `<xacro:arg>` declares).
+        subject: the variable or argument name.
+        message: what happened and what to do, in a user's words.
+        span: where (the lookup, the closest declaration, or the top file).
+    """
+
+    kind: str
+    subject: str
+    message: str
+    span: Span
 
 
 @dataclass(frozen=True)
@@ -37,6 +88,10 @@ class Expanded:
         macro_recursion: the deepest self-recursion of each recursive macro.
         from_xacro: True when xacro ran (False for a plain URDF read as is).
         args: the xacro arguments used.
+        declared_args: every evaluated `<xacro:arg>`: (name, where it is declared).
+        env_defaults: optenv lookups of variables that were not passed.
+        notes: what the rules should report about the inputs (computed by the parent for
+            this run, from the facts above and its own environment; never cached).
     """
 
     source: str
@@ -47,3 +102,15 @@ class Expanded:
     macro_recursion: tuple[MacroRecursion, ...] = ()
     from_xacro: bool = False
     args: tuple[tuple[str, str], ...] = ()
+    declared_args: tuple[tuple[str, Span], ...] = ()
+    env_defaults: tuple[EnvDefault, ...] = ()
+    notes: tuple[ExpansionNote, ...] = ()
+
+
+def decode_input_facts(data: dict[str, Any]) -> dict[str, Any]:
+    """The `declared_args` and `env_defaults` of an `Expanded` encoded with
+    `dataclasses.asdict` (for the expansion cache), as keyword arguments of `Expanded`."""
+    return {"declared_args": tuple((name, Span(**span))
+                                   for name, span in data.get("declared_args", ())),
+            "env_defaults": tuple(EnvDefault(d["name"], d["default"], Span(**d["span"]))
+                                  for d in data.get("env_defaults", ()))}

@@ -12,12 +12,18 @@ import sys
 from pathlib import Path
 
 from robotdesc import errors
-from robotdesc.expansion.packages import PackageResolverConfig
-from robotdesc.expansion.result import Expanded, ResolvedPackage
-from robotdesc.rules.registry import MacroRecursion
+from robotdesc.expansion import confine
+from robotdesc.expansion.packages import PackageResolver, PackageResolverConfig
+from robotdesc.expansion.result import EnvDefault, Expanded, MacroRecursion, ResolvedPackage
+from robotdesc.expansion.sandbox import is_within
 from robotdesc.source import Span
 
 log = logging.getLogger(__name__)
+
+#: Whether the "cannot confine" warning was logged in this process (it is logged once).
+_WARNED_UNCONFINED: list[bool] = []
+#: Characters of the worker's stderr passed through to the log (no terminal control codes).
+_PRINTABLE = {c: None for c in range(32) if c not in (9,)} | {127: None}
 
 _ERROR_KINDS = {
     "XmlSyntaxError": errors.XmlSyntaxError,
@@ -25,6 +31,7 @@ _ERROR_KINDS = {
     "SandboxViolation": errors.SandboxViolation,
     "LimitExceeded": errors.LimitExceeded,
     "PackageNotFoundError": errors.ExpansionError,
+    "SandboxUnavailable": errors.SandboxUnavailable,
 }
 
 
@@ -58,22 +65,88 @@ def _worker_environment() -> dict[str, str]:
     return env
 
 
+def require_confinement(path: Path) -> None:
+    """Refuse untrusted expansion where the worker cannot be confined (warned once).
+
+    Raises:
+        SandboxUnavailable: Landlock or seccomp is missing (or this is not Linux).
+    """
+    support = confine.probe()
+    if support.available:
+        return
+    if not _WARNED_UNCONFINED:
+        _WARNED_UNCONFINED.append(True)
+        log.warning("cannot confine the xacro worker here: %s; untrusted xacro files will not "
+                    "be expanded (pass --trusted only for files you trust)", support.reason)
+    raise errors.SandboxUnavailable(
+        f"refusing to expand xacro without OS confinement ({support.reason}); a xacro file "
+        "is code: pass --trusted only for files you trust", Span(str(path)))
+
+
+@dataclasses.dataclass(frozen=True)
+class Roots:
+    """What the worker may read.
+
+    Attributes:
+        known: every package the resolver chain can return, in chain order.
+        data: the folders (and files) the OS lets the worker read besides Python's code.
+        guard: the roots the audit guard allows from the start (packages found later by
+            `$(find)` are added to it as they are used).
+    """
+
+    known: tuple[ResolvedPackage, ...]
+    data: tuple[str, ...]
+    guard: tuple[str, ...]
+
+
+def worker_roots(path: Path, resolver: PackageResolverConfig) -> Roots:
+    """Resolve the whole package chain now (in the parent) and derive the readable roots.
+
+    The data roots are the top file's package (or its folder when it has none), every
+    package folder the chain can return and the config's package folders; a `--package-path`
+    folder holding no package is a root itself. Never a whole workspace.
+    """
+    chain = PackageResolver(resolver)
+    known = chain.candidates()
+    top_root = str(chain.enclosing[1]) if chain.enclosing else str(path.resolve().parent)
+    explicit = []
+    for folder in resolver.package_paths:
+        inside = [p.path for p in known if p.source == "--package-path" and is_within(p.path, (folder,))]
+        explicit.extend(inside or [folder])
+    mapped = [folder for _, folder in resolver.package_map]
+    data = tuple(dict.fromkeys([top_root, *explicit, *mapped, *(p.path for p in known)]))
+    return Roots(known, data, tuple(dict.fromkeys([top_root, *explicit])))
+
+
 def run_worker(path: Path, args: dict[str, str], resolver: PackageResolverConfig, *,
                trusted: bool, env: dict[str, str], limits: WorkerLimits,
-               extra_roots: tuple[str, ...] = ()) -> Expanded:
-    """Expand `path` in a worker process.
+               env_names: tuple[str, ...] = ()) -> Expanded:
+    """Expand `path` in a worker process (confined by the OS unless `trusted`).
+
+    Args:
+        env_names: names (never values) of variables set in the caller's environment,
+            so that the worker can say which one was not passed.
 
     Raises:
         InputError subclasses: the file could not be expanded (with file:line when known).
         RobotdescError: the worker failed in a way that is robotdesc's bug.
     """
+    if not trusted:
+        require_confinement(path)
+    roots = worker_roots(path, resolver)
     job = {
         "file": str(path), "args": sorted(args.items()), "resolver": dataclasses.asdict(resolver),
         "trusted": trusted, "env": env, "memory_mb": limits.memory_mb,
         "cpu_seconds": max(1, int(limits.timeout_s) + 1), "max_macro_depth": limits.max_macro_depth,
-        "max_output_bytes": limits.max_output_bytes, "extra_roots": list(extra_roots),
+        "max_output_bytes": limits.max_output_bytes,
+        "known": [[p.name, p.path, p.source] for p in roots.known],
+        "data_roots": list(roots.data), "guard_roots": list(roots.guard),
+        "env_names": sorted(env_names),
     }
-    command = [sys.executable, "-B", "-c", "from robotdesc.expansion.worker import main; main()"]
+    bootstrap = "import sys; sys.path[:] = [p for p in sys.path if p]; " \
+                "from robotdesc.expansion.worker import main; main()"
+    command = [sys.executable, "-B", *(["-P"] if sys.version_info >= (3, 11) else []),
+               "-c", bootstrap]
     try:
         proc = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                 stderr=subprocess.PIPE, env=_worker_environment(),
@@ -90,16 +163,59 @@ def run_worker(path: Path, args: dict[str, str], resolver: PackageResolverConfig
             "(a macro that recurses without end? raise the limit with --timeout)", Span(str(path)))
     for line in err.decode("utf-8", "replace").splitlines():
         if line.strip():
-            log.warning("xacro: %s", line)
+            log.warning("xacro: %s", line.translate(_PRINTABLE))
     if proc.returncode != 0 or not out:
         raise _crash(proc.returncode, path, limits)
-    answer = json.loads(out)
-    if not answer["ok"]:
-        raise _failure(answer, path)
-    return _expanded(answer, path, args)
+    try:
+        answer = json.loads(out)
+        if not answer["ok"]:
+            raise _failure(answer, path)
+        expanded = _expanded(answer, path, args)
+    except (ValueError, KeyError, TypeError, IndexError) as exc:
+        raise _garbled(path, trusted) from exc
+    if not trusted:
+        _check_answer(expanded, roots, path)
+    return expanded
+
+
+def _garbled(path: Path, trusted: bool) -> errors.InputError:
+    """The worker's answer is not what the worker writes: an expression wrote to its output."""
+    text = ("the xacro worker's answer was garbled (an expression wrote to the worker's "
+            "output?)")
+    if trusted:
+        return errors.ExpansionError(text, Span(str(path)))
+    return errors.SandboxViolation(f"{text}; the sandbox refused the result", Span(str(path)))
+
+
+def _check_answer(expanded: Expanded, roots: Roots, path: Path) -> None:
+    """Refuse an answer that names files or packages the confined worker could not have used.
+
+    The answer comes from a process that ran untrusted code; the parent reads the files it
+    names (suppression comments, cache digests), so they must lie inside the data roots.
+    """
+    for name in (*expanded.files, *expanded.files_read):
+        if name == "<string>":
+            continue
+        if not os.path.isabs(name) or not is_within(name, roots.data):
+            raise errors.SandboxViolation(
+                f"the xacro worker's answer names '{name}', outside the packages in use; "
+                "the sandbox refused the result", Span(str(path)))
+    known = set(roots.known)
+    for package in expanded.packages:
+        if package not in known:
+            raise errors.SandboxViolation(
+                f"the xacro worker's answer names package '{package.name}' at {package.path}, "
+                "which the resolver does not know; the sandbox refused the result",
+                Span(str(path)))
 
 
 def _crash(returncode: int, path: Path, limits: WorkerLimits) -> errors.RobotdescError:
+    if returncode == -signal.SIGSYS:
+        return errors.SandboxViolation(
+            "the sandbox stopped the xacro worker: an expression made a system call it "
+            "forbids (starting a program or process, opening a socket, changing file "
+            "attributes, signalling another process, ...); use --trusted only for files you "
+            "trust", Span(str(path)))
     if returncode in (-signal.SIGXCPU, -signal.SIGKILL):
         return errors.LimitExceeded(f"expansion hit the CPU limit ({int(limits.timeout_s) + 1} s)",
                                     Span(str(path)))
@@ -130,4 +246,8 @@ def _expanded(answer: dict, path: Path, args: dict[str, str]) -> Expanded:
         source=str(path), xml=answer["xml"].encode("utf-8"), files=tuple(answer["files"]),
         files_read=tuple(answer["files_read"]),
         packages=tuple(ResolvedPackage(*p) for p in answer["packages"]),
-        macro_recursion=recursion, from_xacro=True, args=tuple(sorted(args.items())))
+        macro_recursion=recursion, from_xacro=True, args=tuple(sorted(args.items())),
+        declared_args=tuple((name, _span(span) or Span(str(path)))
+                            for name, span in answer.get("declared_args", ())),
+        env_defaults=tuple(EnvDefault(name, default, _span(span) or Span(str(path)))
+                           for name, default, span in answer.get("env_defaults", ())))

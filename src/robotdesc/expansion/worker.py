@@ -7,13 +7,25 @@ The result is one JSON object on stdout: {"ok": true, ...} or {"ok": false, "kin
 
 from __future__ import annotations
 
+import difflib
+import errno
 import json
+import math  # noqa: F401 -- everything the worker needs is imported before confinement
 import os
 import sys
 import threading
+import traceback
+import xml.dom.expatbuilder
+import xml.dom.minidom
 import xml.parsers.expat
 
-from robotdesc.expansion import hooks, sandbox
+import xacro
+import xacro.substitution_args
+import yaml  # noqa: F401 -- xacro.load_yaml imports it lazily
+
+from robotdesc.expansion import confine, hooks, sandbox
+from robotdesc.expansion.packages import PackageResolver, PackageResolverConfig
+from robotdesc.expansion.result import ResolvedPackage
 
 #: Stack for the expansion thread: xacro recurses once per nested element and macro call.
 _THREAD_STACK_BYTES = 256 * 1024 * 1024
@@ -43,8 +55,44 @@ def _root_cause(exc: BaseException) -> BaseException:
     return exc
 
 
-def _classify(exc: BaseException) -> str:
+def _chain(exc: BaseException):
+    """`exc` and every exception it wraps or was raised from."""
+    seen = set()
+    while isinstance(exc, BaseException) and id(exc) not in seen:
+        seen.add(id(exc))
+        yield exc
+        exc = getattr(exc, "exc", None) or exc.__cause__ or exc.__context__
+
+
+def _os_refusal(exc: BaseException, guard: sandbox.Guard | None) -> BaseException | None:
+    """The OSError or ImportError in `exc`'s chain that the OS confinement caused, if any.
+
+    A file inside the packages in use that its own permissions make unreadable is the file's
+    problem, not the sandbox's (Landlock does not answer `access()`).
+    """
+    for item in _chain(exc):
+        if isinstance(item, OSError) and item.errno in (errno.EPERM, errno.EACCES):
+            name = item.filename if isinstance(item.filename, str) else ""
+            if guard is not None and name and sandbox.is_within(name, guard.data_roots) \
+                    and os.path.exists(name) and not os.access(name, os.R_OK):
+                return None
+            return item
+        if isinstance(item, ImportError) and "Permission denied" in str(item):
+            return item
+    return None
+
+
+def _missing_arg(exc: BaseException) -> str | None:
+    for item in _chain(exc):
+        if isinstance(item, xacro.substitution_args.ArgException):
+            return str(item.args[0]) if item.args else str(item)
+    return None
+
+
+def _classify(exc: BaseException, guard: sandbox.Guard | None = None) -> str:
     cause = _root_cause(exc)
+    if guard is not None and guard.safe and _os_refusal(exc, guard) is not None:
+        return "SandboxViolation"
     for candidate in (exc, cause):
         if isinstance(candidate, sandbox.Forbidden):
             return "SandboxViolation"
@@ -59,8 +107,22 @@ def _classify(exc: BaseException) -> str:
     return "ExpansionError"
 
 
-def _message(exc: BaseException) -> str:
+def _message(exc: BaseException, guard: sandbox.Guard | None = None,
+             declared: tuple[str, ...] = ()) -> str:
     cause = _root_cause(exc)
+    refusal = _os_refusal(exc, guard) if guard is not None and guard.safe else None
+    if refusal is not None:
+        what = getattr(refusal, "strerror", None) or str(refusal)
+        target = getattr(refusal, "filename", None)
+        where = f" ('{target}')" if isinstance(target, str) else ""
+        return (f"the sandbox refused an operation of a xacro expression: {what}{where}; "
+                "the file tried to reach outside the packages in use (use --trusted only "
+                "for files you trust)")
+    missing = _missing_arg(exc)
+    if missing is not None:
+        close = difflib.get_close_matches(missing, declared, 1)
+        hint = f" (did you mean '{close[0]}'?)" if close else ""
+        return f"xacro argument '{missing}' has no default; pass {missing}:=VALUE{hint}"
     if isinstance(cause, MemoryError):
         return "memory limit hit while evaluating an expression (a xacro expression built a huge value)"
     if isinstance(cause, RecursionError):
@@ -94,17 +156,18 @@ class _UnknownPackage(Exception):
         self.name = name
 
 
+def _resolver(job: dict) -> PackageResolver:
+    settings = {k: tuple(tuple(x) if isinstance(x, list) else x for x in v) if isinstance(v, list)
+                else v for k, v in job["resolver"].items()}
+    known = [ResolvedPackage(*entry) for entry in job["known"]]
+    return PackageResolver(PackageResolverConfig(**settings), known=known)
+
+
 def run_job(job: dict, guard: sandbox.Guard) -> dict:
     """Expand the job's file; return the result dictionary."""
-    from robotdesc.expansion.packages import PackageResolver, PackageResolverConfig, enclosing_package
-
-    resolver = PackageResolver(PackageResolverConfig(**{
-        k: tuple(tuple(x) if isinstance(x, list) else x for x in v) if isinstance(v, list) else v
-        for k, v in job["resolver"].items()}))
+    resolver = _resolver(job)
     top = os.path.abspath(job["file"])
-    enclosing = enclosing_package(top)
-    guard.allow_root(str(enclosing[1]) if enclosing else os.path.dirname(top))
-    for folder in job.get("extra_roots", []):
+    for folder in job["guard_roots"]:
         guard.allow_root(folder)
     state = hooks.ExpansionState(max_macro_depth=job["max_macro_depth"])
 
@@ -121,10 +184,8 @@ def run_job(job: dict, guard: sandbox.Guard) -> dict:
                 f"include of '{path}' escapes the package root ({', '.join(guard.data_roots)}); "
                 "safe mode refuses it (use --package-path for another package, or --trusted)")
 
-    import xacro
-
     hooks.install(state, find_package, check_file)
-    hooks.install_environment(job["env"], guard.safe)
+    hooks.install_environment(job["env"], guard.safe, state, frozenset(job.get("env_names", ())))
     xacro.verbosity = 0
     guard.armed = True
     try:
@@ -145,8 +206,8 @@ def run_job(job: dict, guard: sandbox.Guard) -> dict:
             path = getattr(cause, "robotdesc_path", top)
             return _failure("XmlSyntaxError", f"malformed XML: {xml.parsers.expat.ErrorString(cause.code)}",
                             [path, cause.lineno, cause.offset + 1])
-        return _failure(_classify(exc), _message(exc), _span(src, state.files),
-                        [_span(c, state.files) for c in _bounded(chain) if c])
+        return _failure(_classify(exc, guard), _message(exc, guard, tuple(state.declared_args)),
+                        _span(src, state.files), [_span(c, state.files) for c in _bounded(chain) if c])
     finally:
         guard.armed = False
     recursion = [[name, depth, _span(defined, state.files), _span(called, state.files)]
@@ -155,26 +216,36 @@ def run_job(job: dict, guard: sandbox.Guard) -> dict:
         return _failure("LimitExceeded", f"expanded document larger than {job['max_output_bytes']} bytes")
     return {"ok": True, "xml": text, "files": state.files, "files_read": guard.files_read,
             "packages": [[p.name, p.path, p.source] for p in resolver.resolved],
-            "macro_recursion": recursion}
+            "macro_recursion": recursion,
+            "declared_args": [[name, _span(src, state.files)]
+                              for name, src in state.declared_args.items()],
+            "env_defaults": [[name, default, _span(src, state.files)]
+                             for name, default, src in state.env_defaults]}
 
 
 def main() -> None:
+    """Read the job, confine this process (safe mode), expand in a thread, answer."""
     job = json.loads(sys.stdin.read())
     sandbox.apply_limits(job["memory_mb"], job["cpu_seconds"])
-    guard = sandbox.Guard(safe=not job["trusted"], code_roots=sandbox.code_roots())
+    guard = sandbox.Guard(safe=not job["trusted"], code_roots=confine.code_roots())
     sandbox.install(guard)
     real_stdout = sys.stdout
     sys.stdout = sys.stderr  # xacro prints; keep stdout for the result
     sys.setrecursionlimit(_RECURSION_LIMIT)
     threading.stack_size(_THREAD_STACK_BYTES)
     outcome: dict = {}
+    if guard.safe:
+        try:  # before any xacro expression runs and before the expansion thread starts
+            confine.confine(job["data_roots"], guard.code_roots)
+        except confine.ConfinementError as exc:
+            real_stdout.write(json.dumps(_failure("SandboxUnavailable", str(exc))))
+            real_stdout.flush()
+            return
 
     def target() -> None:
         try:
             outcome.update(run_job(job, guard))
         except BaseException as exc:  # noqa: BLE001 -- reported to the parent as an internal error
-            import traceback
-
             outcome.update(_failure("InternalError", f"{type(exc).__name__}: {exc}",
                                     None, ()), traceback=traceback.format_exc())
 

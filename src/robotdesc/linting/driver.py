@@ -47,7 +47,7 @@ def lint_file(path: str, config: Config | None = None, *,
     """
     from robotdesc.expansion import ExpandOptions, expand_file
     from robotdesc.model.parse import parse_urdf
-    from robotdesc.rules.registry import ExpansionFacts, RuleContext, all_rules
+    from robotdesc.rules.registry import ExpansionFacts, RuleContext, SourceDocument, all_rules
 
     target = os.path.abspath(path)
     config = config if config is not None else discover_config(target)
@@ -55,6 +55,8 @@ def lint_file(path: str, config: Config | None = None, *,
     options = dataclasses.replace(options, package_map=tuple(options.package_map)
                                   + tuple(config.packages))
     merged_args = {**dict(config.args), **dict(args or {})}
+    options = dataclasses.replace(options, unchecked_args=tuple(
+        name for name, _ in config.args if name not in (args or {})))
     expanded = expand_file(target, merged_args, options=options)
     robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
 
@@ -62,8 +64,10 @@ def lint_file(path: str, config: Config | None = None, *,
     chosen_ignore = tuple(config.ignore) + tuple(ignore)
     registered = all_rules()
     rules = select_rules(registered, chosen_select, chosen_ignore)
-    facts = ExpansionFacts(expanded.macro_recursion, expanded.files_read, expanded.from_xacro)
+    facts = ExpansionFacts(expanded.macro_recursion, expanded.files_read, expanded.from_xacro,
+                           notes=expanded.notes)
     fallback = robot.where or Provenance(Span(expanded.source))
+    document = SourceDocument(expanded.xml, expanded.source, tuple(expanded.files))
 
     meshes = _mesh_context(rules, robot, target, config, options)
     diagnostics = []
@@ -71,7 +75,8 @@ def lint_file(path: str, config: Config | None = None, *,
         configured = config.options_for(rule.code)
         context = RuleContext(options=configured if configured is not None
                               else rule.default_options(), expansion=facts,
-                              meshes=meshes if "meshes" in rule.needs else None)
+                              meshes=meshes if "meshes" in rule.needs else None,
+                              document=document if "document" in rule.needs else None)
         try:
             findings = _run_cached(rule, robot, context, expanded.xml, options)
         except RobotdescError:

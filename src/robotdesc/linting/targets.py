@@ -2,21 +2,34 @@
 
 A file named on the command line is linted as given. A directory (a package or a whole
 workspace) is searched for top-level descriptions: `*.urdf` files, and `*.xacro` /
-`*.urdf.xacro` files whose `<robot>` root makes a robot rather than merely defining macros
-for others to include. When the config that governs a file lists `targets`, those targets
-(with their argument matrices) replace discovery for the files that config governs.
+`*.urdf.xacro` files (or `.urdf` files written in xacro) whose `<robot>` root makes a robot
+rather than merely defining macros or properties for others to include. An empty `<robot/>`
+placeholder is skipped with a note. When the config that governs a file lists `targets`,
+those targets (with their argument matrices) replace discovery for the files that config
+governs.
+
+The packages under a searched directory are passed to each of its targets (as config
+package entries), so that `$(find pkg)` and `package://pkg` resolve to them even when the
+directory has no workspace markers (.git, src/, colcon files).
 """
 
 from __future__ import annotations
 
+import dataclasses
+import logging
 import os
+import re
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Iterable, Literal
 
 from robotdesc.config import Config, discover_config, find_config_file, load_config
 from robotdesc.errors import InputError
+from robotdesc.expansion.packages import crawl_packages, enclosing_package
 from robotdesc.linting.matrix import Variant, matrix_variants, variant_label
 from robotdesc.source import Span
+
+log = logging.getLogger(__name__)
 
 #: Files a directory walk looks at (".urdf.xacro" ends with ".xacro").
 DESCRIPTION_SUFFIXES = (".urdf", ".xacro")
@@ -25,6 +38,10 @@ _SKIPPED_DIRS = {"build", "install", "log", "node_modules", "__pycache__"}
 _DIRECTIVES = {"macro", "property", "include", "arg", "if", "unless"}
 _XACRO_URIS = {"http://www.ros.org/wiki/xacro", "http://ros.org/wiki/xacro",
                "http://wiki.ros.org/xacro", "http://www.ros.org/xacro"}
+#: `$(find pkg)` at the start of an include's filename.
+_FIND = re.compile(r"^\$\(find ([A-Za-z0-9_\-]+)\)")
+#: How deep includes are followed to decide whether a file makes a robot.
+_MAX_INCLUDE_DEPTH = 8
 
 Kind = Literal["robot", "library", "other"]
 
@@ -62,6 +79,9 @@ class Discovery:
         targets: what to lint, in a stable order.
         libraries: files skipped as macro libraries (or not robots at all).
         unlisted: files skipped because their config lists `targets` without them.
+        placeholders: files skipped because they are an empty `<robot/>`.
+        packages: the (name, folder) pairs found under the directory and given to its
+            targets.
     """
 
     path: str
@@ -69,6 +89,8 @@ class Discovery:
     targets: tuple[LintTarget, ...]
     libraries: tuple[str, ...] = ()
     unlisted: tuple[str, ...] = ()
+    placeholders: tuple[str, ...] = ()
+    packages: tuple[tuple[str, str], ...] = ()
 
 
 def target_name(path: str, variant: Variant = (), base: str | None = None) -> str:
@@ -102,61 +124,166 @@ def discover_targets(path: str, config: Config | None = None) -> Discovery:
         specs = _specs_for(configs.for_file(absolute), absolute)
         return Discovery(path, False, tuple(_expand(absolute, configs.for_file(absolute),
                                                     specs)))
-    robots, libraries = [], []
+    packages = _packages_under(path)
+    robots, libraries, placeholders = [], [], []
     for candidate in sorted(_walk(path)):
-        (robots if description_kind(candidate) == "robot" else libraries).append(candidate)
-    listed = _listed_files(path, [*robots, *libraries], configs)
+        if is_placeholder(candidate):
+            placeholders.append(candidate)
+        elif description_kind(candidate, dict(packages)) == "robot":
+            robots.append(candidate)
+        else:
+            libraries.append(candidate)
+    listed = _listed_files(path, [*robots, *libraries, *placeholders], configs)
     targets, unlisted = [], []
     for file in sorted(set(robots) | set(listed)):
-        settings = configs.for_file(file)
+        settings = _with_packages(configs.for_file(file), packages, file)
         specs = _specs_for(settings, file)
         if settings.targets and not specs:
             unlisted.append(file)
             continue
         targets.extend(_expand(file, settings, specs))
-    if not targets and not unlisted:
+    skipped_placeholders = tuple(f for f in placeholders if f not in set(listed))
+    for file in skipped_placeholders:
+        log.warning("note: skipped %s: an empty <robot/> placeholder, nothing to lint",
+                    target_name(file, (), path))
+    if not targets and not unlisted and not skipped_placeholders:
         raise InputError("no robot description (*.urdf, or *.xacro with a robot that is not "
                          "only macros) under this directory", Span(path))
     skipped = tuple(f for f in libraries if f not in set(listed))
-    return Discovery(path, True, tuple(dict.fromkeys(targets)), skipped, tuple(unlisted))
+    return Discovery(path, True, tuple(dict.fromkeys(targets)), skipped, tuple(unlisted),
+                     skipped_placeholders, packages)
 
 
-def description_kind(path: str) -> Kind:
-    """Whether a file is a top-level robot, a macro library, or no robot description.
+def is_placeholder(path: str) -> bool:
+    """Whether a file is an intentionally empty `<robot/>` (comments aside): a placeholder
+    that a folder lint skips with a note."""
+    root = _read_root(path)
+    return (root is not None and _local_name(root) == "robot"
+            and not any(isinstance(child.tag, str) for child in root))
 
-    A `.urdf` with a `<robot>` root is a robot. A xacro file is a robot when its top level
-    (looking inside `xacro:if`/`xacro:unless`) has a `<link>` or `<joint>`, calls a macro,
-    or includes other files without defining macros itself; otherwise it only defines
-    macros, properties or materials for others and is a library. A file that is not
-    well-formed XML counts as a robot, so that linting it reports the syntax error.
+
+def description_kind(path: str, packages: dict[str, str] | None = None) -> Kind:
+    """Whether a file is a top-level robot, a library, or no robot description.
+
+    A `.urdf` with a `<robot>` root is a robot, unless it is written in xacro (it has xacro
+    elements): then it is judged as a xacro file. A xacro file is a robot when its top
+    level (looking inside `xacro:if`/`xacro:unless`) has a `<link>` or `<joint>` or calls a
+    macro, or when it includes, without defining macros itself, a file that makes
+    something: includes are followed (relative paths, and `$(find pkg)` for the `packages`
+    given, name -> folder); one that cannot be followed counts as making a robot. A file
+    that only defines macros, properties, arguments or materials for others is a library.
+    A file that is not well-formed XML counts as a robot, so that linting it reports the
+    syntax error.
     """
+    root = _read_root(path)
+    if root is None:
+        return "robot"
+    if _local_name(root) != "robot":
+        return "other"
+    if not path.endswith(".xacro") and not _uses_xacro(root):
+        return "robot"
+    makes = _makes_something(path, root, packages or {}, frozenset({os.path.realpath(path)}))
+    return "robot" if makes else "library"
+
+
+# --- helpers ------------------------------------------------------------------------------
+
+
+def _read_root(path: str):
+    """The root element of an XML file, or None when it is not well-formed."""
     from lxml import etree
 
     parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
                              remove_comments=True, remove_pis=True)
     try:
-        root = etree.parse(path, parser).getroot()
+        return etree.parse(path, parser).getroot()
     except (etree.XMLSyntaxError, OSError, ValueError):
-        return "robot"
-    if etree.QName(root).localname != "robot":
-        return "other"
-    if not path.endswith(".xacro"):
-        return "robot"
-    calls, links, includes, macros = False, False, False, False
+        return None
+
+
+def _local_name(element) -> str:
+    from lxml import etree
+
+    return etree.QName(element).localname
+
+
+def _uses_xacro(root) -> bool:
+    """Whether a document holds xacro elements (a declared namespace alone is not use)."""
+    return any(_xacro_name(element)[1] for element in root.iter()
+               if isinstance(element.tag, str))
+
+
+def _makes_something(path: str, root, packages: dict[str, str], seen: frozenset[str],
+                     depth: int = 0) -> bool:
+    """Whether a xacro document, with what it includes, makes links, joints or macro calls.
+
+    The defining part of a library (macros, properties, args, materials) makes nothing; an
+    include makes something when the included file does, or when it cannot be followed.
+    """
+    includes, macros = [], False
     for element in _top_level(root):
         name, is_xacro = _xacro_name(element)
         if not is_xacro:
-            links = links or name in ("link", "joint")
+            if name in ("link", "joint"):
+                return True
         elif name == "macro":
             macros = True
         elif name == "include":
-            includes = True
+            includes.append(element.get("filename") or "")
         elif name not in _DIRECTIVES:
-            calls = True
-    return "robot" if links or calls or (includes and not macros) else "library"
+            return True  # a macro call
+    if macros or not includes:
+        return False
+    for filename in includes:
+        included = _include_path(filename, path, packages)
+        if included is None or depth >= _MAX_INCLUDE_DEPTH:
+            return True  # cannot tell: assume it makes the robot
+        real = os.path.realpath(included)
+        if real in seen:
+            continue
+        sub = _read_root(included)
+        if sub is None or _makes_something(included, sub, packages, seen | {real}, depth + 1):
+            return True
+    return False
 
 
-# --- helpers ------------------------------------------------------------------------------
+def _include_path(filename: str, including: str, packages: dict[str, str]) -> str | None:
+    """The file an include names, when it can be known without expanding; else None."""
+    match = _FIND.match(filename)
+    if match:
+        folder = packages.get(match.group(1))
+        if folder is None:
+            found = enclosing_package(including)
+            folder = str(found[1]) if found and found[0] == match.group(1) else None
+        if folder is None:
+            return None
+        filename = folder + filename[match.end():]
+    if "$" in filename or not filename:
+        return None
+    resolved = os.path.join(os.path.dirname(including), filename)
+    return resolved if os.path.isfile(resolved) else None
+
+
+def _packages_under(directory: str) -> tuple[tuple[str, str], ...]:
+    """The packages under a searched directory (and the directory itself), name -> folder."""
+    found = crawl_packages(Path(os.path.abspath(directory)))
+    return tuple(sorted((name, str(folder)) for name, folder in found.items()))
+
+
+def _with_packages(config: Config, packages: tuple[tuple[str, str], ...], file: str) -> Config:
+    """`config` with the searched directory's packages appended to its own.
+
+    The config's own entries come first; the file's enclosing package is left to the
+    resolver's own "enclosing" step (so that a same-named copy elsewhere cannot shadow it).
+    """
+    if not packages:
+        return config
+    enclosing = enclosing_package(file)
+    own = {name for name, _ in config.packages}
+    if enclosing:
+        own.add(enclosing[0])
+    extra = tuple((name, folder) for name, folder in packages if name not in own)
+    return dataclasses.replace(config, packages=tuple(config.packages) + extra) if extra else config
 
 
 class _Configs:

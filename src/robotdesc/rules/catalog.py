@@ -2,6 +2,7 @@
 
 from robotdesc.rules import (  # noqa: F401
     budget,
+    consumers,
     gazebo,
     inertia,
     inertia_meshes,
@@ -15,5 +16,7 @@ from robotdesc.rules import (  # noqa: F401
     sim,
     structure,
     transmissions,
+    vocabulary,
     xacro,
+    xacro_inputs,
 )

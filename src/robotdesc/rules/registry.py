@@ -13,25 +13,8 @@ from dataclasses import dataclass, field
 from typing import Any, Callable, Iterable, Iterator
 
 from robotdesc.diagnostics import Finding, Severity
+from robotdesc.expansion.result import ExpansionNote, MacroRecursion  # noqa: F401 (re-export)
 from robotdesc.model.elements import Robot
-from robotdesc.source import Span
-
-
-@dataclass(frozen=True)
-class MacroRecursion:
-    """How deep one macro recursed during expansion.
-
-    Attributes:
-        macro: the macro's name.
-        depth: the deepest nesting of the macro within itself.
-        defined_at: where the macro is defined.
-        called_at: the outermost call site of the deepest chain.
-    """
-
-    macro: str
-    depth: int
-    defined_at: Span
-    called_at: Span | None = None
 
 
 @dataclass(frozen=True)
@@ -41,6 +24,23 @@ class ExpansionFacts:
     macro_recursion: tuple[MacroRecursion, ...] = ()
     files_read: tuple[str, ...] = ()
     from_xacro: bool = False
+    notes: tuple[ExpansionNote, ...] = ()
+
+
+@dataclass(frozen=True)
+class SourceDocument:
+    """The URDF text the model was parsed from, for rules that judge raw elements.
+
+    Attributes:
+        xml: the (expanded) document.
+        path: the file it came from.
+        files: the expansion's file table (empty for a plain URDF), which the private
+            provenance attribute indexes.
+    """
+
+    xml: bytes = b""
+    path: str = ""
+    files: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -51,11 +51,14 @@ class RuleContext:
         options: the rule's options (an instance of its options dataclass, or None).
         expansion: facts from the xacro expansion (empty for plain URDF).
         meshes: mesh access for rules that declare `needs={"meshes"}` (None otherwise).
+        document: the source document for rules that declare `needs={"document"}`
+            (None otherwise).
     """
 
     options: Any = None
     expansion: ExpansionFacts = field(default_factory=ExpansionFacts)
     meshes: Any = None
+    document: SourceDocument | None = None
 
 
 CheckFunction = Callable[[Robot, RuleContext], Iterable[Finding]]
