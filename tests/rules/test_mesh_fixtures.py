@@ -120,10 +120,12 @@ def test_each_mistake_names_its_cause(fixture_urdf: Path) -> None:
 
 def test_inertia_mismatches_carry_the_suggested_block(fixture_urdf: Path) -> None:
     fixes = {message.split("'")[1]: fix for code, _, message, fix in lint(fixture_urdf)
-             if code == "I201"}
+             if code in ("I201", "I204")}
     assert set(fixes) == {"grams_mm2", "rotated", "swapped_sign", "right_leg", "millimetres"}
     assert 'ixx="0.0166667"' in fixes["grams_mm2"] and '<mass value="1"/>' in fixes["grams_mm2"]
     assert 'ixy="0.0103125"' in fixes["swapped_sign"]
+    # the mesh in millimetres: the block is that of the mesh scaled by 0.001, and says so
+    assert 'ixx="0.0166667"' in fixes["millimetres"] and "scale=" in fixes["millimetres"]
 
 
 def test_fixture_marks_every_mesh_rule() -> None:

@@ -24,7 +24,8 @@ def test_codes_and_names_are_well_formed_and_unique() -> None:
 def test_families_match_code_prefixes() -> None:
     prefixes = {"structure": "S", "joints": "J1", "mimic": "J2", "transmissions": "T",
                 "gazebo": "G", "visual": "V", "paths": "P", "xacro": "X", "meta": "RD",
-                "inertia": "I", "meshes": "M", "budget": "B", "sim": "D", "kinematics": "K"}
+                "inertia": "I", "meshes": "M", "budget": "B", "sim": "D", "kinematics": "K",
+                "consumers": "C"}
     for rule_ in all_rules():
         assert rule_.code.startswith(prefixes[rule_.family]), (rule_.code, rule_.family)
 

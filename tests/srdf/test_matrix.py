@@ -8,7 +8,8 @@ from robotdesc.srdf.matrix import Reason, compute_matrix  # noqa: E402
 from kinematics.robots import ARM, INERTIA, robot  # noqa: E402
 
 #: b (a small sphere) always sits inside a's box; "orbit" slides through it half the time;
-#: m carries a sphere far above, so a and b are not adjacent.
+#: m carries a sphere far above, so a and b are not adjacent. "far" hangs on a (locked)
+#: revolute joint: on a fixed one it would be welded to a, making a and orbit adjacent.
 ALWAYS = f"""<robot name="r">
   <link name="a"><collision><geometry><box size="1 1 1"/></geometry></collision></link>
   <link name="m"><inertial><mass value="1"/>{INERTIA}</inertial>
@@ -21,7 +22,8 @@ ALWAYS = f"""<robot name="r">
     <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
   <joint name="k" type="fixed"><parent link="m"/><child link="n"/><origin xyz="0 0 0.1"/></joint>
   <joint name="mb" type="continuous"><parent link="n"/><child link="b"/></joint>
-  <joint name="far_joint" type="fixed"><parent link="a"/><child link="far"/><origin xyz="5 0 0"/></joint>
+  <joint name="far_joint" type="revolute"><parent link="a"/><child link="far"/><origin xyz="5 0 0"/>
+    <axis xyz="0 0 1"/><limit lower="0" upper="0" effort="1" velocity="1"/></joint>
   <joint name="slide" type="prismatic"><parent link="far"/><child link="orbit"/>
     <axis xyz="1 0 0"/><limit lower="-5" upper="-3.6" effort="1" velocity="1"/></joint>
 </robot>"""
@@ -62,3 +64,23 @@ def test_parallel_workers_give_the_same_counts(monkeypatch) -> None:
     two = compute_matrix(sliding, lambda mesh: None, samples=400, seed=5, workers=2)
     assert one.pairs == two.pairs
     assert any(p.reason is None and 0 < p.collisions < 400 for p in one.pairs)
+
+
+WELDED = f"""<robot name="w">
+  <link name="link7"><collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
+  <link name="hand"><collision><origin xyz="0 0 0.2"/><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <link name="hand_sc"><collision><geometry><sphere radius="0.15"/></geometry></collision></link>
+  <link name="finger"><inertial><mass value="1"/>{INERTIA}</inertial>
+    <collision><origin xyz="0 0 0.3"/><geometry><box size="0.05 0.05 0.1"/></geometry></collision></link>
+  <joint name="j8" type="fixed"><parent link="link7"/><child link="hand"/></joint>
+  <joint name="sc" type="fixed"><parent link="hand"/><child link="hand_sc"/></joint>
+  <joint name="f" type="prismatic"><parent link="hand"/><child link="finger"/>
+    <axis xyz="1 0 0"/><limit lower="0" upper="0.04" effort="1" velocity="1"/></joint>
+</robot>"""
+
+
+def test_links_welded_by_fixed_joints_are_adjacent_as_in_moveit() -> None:
+    matrix = compute_matrix(robot(WELDED), lambda mesh: None, samples=50, seed=0, workers=1)
+    found = reasons(matrix)
+    assert found[("hand_sc", "link7")] is Reason.ADJACENT  # one rigid body
+    assert found[("finger", "link7")] is Reason.ADJACENT  # a joint connects the bodies

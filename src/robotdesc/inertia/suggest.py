@@ -7,11 +7,17 @@ Units: kg, m, kg*m^2.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
+from robotdesc.mesh.context import LinkGeometry, MeshContext
 from robotdesc.mesh.properties import MassProperties
-from robotdesc.model.elements import Link
+from robotdesc.mesh.scale_check import looks_like_millimetres, robot_size
+from robotdesc.model.elements import Link, MeshRef, Robot
 from robotdesc.source import Span
+
+#: The scale that turns a mesh exported in millimetres into metres.
+MILLIMETRE = 0.001
 
 #: The density assumed when a link declares no usable mass (kg/m^3): a guess, said so.
 FALLBACK_DENSITY = 1000.0
@@ -43,11 +49,13 @@ class Suggestion:
 
 
 def suggest_inertial(link: Link, geometry: MassProperties,
-                     fallback_density: float = FALLBACK_DENSITY) -> Suggestion:
+                     fallback_density: float = FALLBACK_DENSITY,
+                     note: str | None = None) -> Suggestion:
     """The `<inertial>` of `link` computed from its geometry (at density 1, link frame).
 
     The declared mass is kept when it is positive; otherwise the geometry's volume times
-    `fallback_density` is used, and the block says so in a comment.
+    `fallback_density` is used, and the block says so in a comment. `note` (for example
+    "add the scale to these meshes") is written as a comment too.
     """
     declared = link.inertial.mass if link.inertial is not None else None
     if declared is not None and declared > 0:
@@ -58,9 +66,73 @@ def suggest_inertial(link: Link, geometry: MassProperties,
                   "replace with the real mass")
     where = link.inertial.where if link.inertial is not None else None
     in_macro = bool(where and where.macro_stack) or bool(link.where and link.where.macro_stack)
-    return Suggestion(link.name, format_inertial(body, None if source == "declared" else source),
+    comment = "; ".join(c for c in (None if source == "declared" else f"mass {source}", note)
+                        if c) or None
+    return Suggestion(link.name, format_inertial(body, comment),
                       body, where.span if where else None,
                       link.where.span if link.where else None, source, in_macro)
+
+
+def millimetre_meshes(robot: Robot, meshes: MeshContext, link: Link,
+                      source: str) -> tuple[MeshRef, ...]:
+    """The link's `<mesh>` references of `source` ("collision" or "visual") that look like
+    millimetres (M108's test: about 1000 times larger than the robot)."""
+    shapes = link.collisions if source == "collision" else link.visuals
+    refs = [s.geometry for s in shapes if isinstance(s.geometry, MeshRef)]
+    if not refs:
+        return ()
+    diagonals = {}
+    for _, _, _, _, ref in meshes.meshes():
+        summary = meshes.lookup(ref).summary
+        if summary is not None:
+            x, y, z = summary.extent
+            diagonals[id(ref)] = (x * x + y * y + z * z) ** 0.5
+    size = robot_size(robot)
+    found = []
+    for ref in refs:
+        own = diagonals.get(id(ref))
+        if own is None:
+            continue
+        others = [d for key, d in diagonals.items() if key != id(ref)]
+        if looks_like_millimetres(own, size, others):
+            found.append(ref)
+    return tuple(found)
+
+
+def corrected_geometry(robot: Robot, meshes: MeshContext, link: Link,
+                       geometry: LinkGeometry) -> tuple[LinkGeometry, str | None]:
+    """The link's geometry with meshes diagnosed as millimetres scaled by 0.001, and a note
+    that says so (the geometry itself and None when no mesh is in millimetres)."""
+    wrong = millimetre_meshes(robot, meshes, link, geometry.source) if geometry.source else ()
+    if not wrong:
+        return geometry, None
+    ids = {id(ref) for ref in wrong}
+
+    def fixed(shapes):
+        return tuple(dataclasses.replace(shape, geometry=dataclasses.replace(
+            shape.geometry, scale=tuple(v * MILLIMETRE for v in shape.geometry.scale)))
+            if id(shape.geometry) in ids else shape for shape in shapes)
+
+    scaled_link = dataclasses.replace(link, visuals=fixed(link.visuals),
+                                      collisions=fixed(link.collisions))
+    context = MeshContext(robot, meshes.settings, meshes.find_package)
+    measured = context.link_geometry(scaled_link, geometry.source)
+    if not measured.trusted:
+        return geometry, None
+    names = ", ".join(sorted({ref.filename for ref in wrong}))
+    return measured, (f"{names} look(s) like millimetres: add scale=\"0.001 0.001 0.001\" to "
+                      "the <mesh>; this block assumes it")
+
+
+def suggest_for_link(robot: Robot, meshes: MeshContext, link: Link,
+                     fallback_density: float = FALLBACK_DENSITY) -> Suggestion | None:
+    """The suggested `<inertial>` of one link from its measured geometry, with meshes in
+    millimetres scaled first; None when the geometry cannot be trusted."""
+    geometry = meshes.link_geometry(link)
+    if not geometry.trusted:
+        return None
+    geometry, note = corrected_geometry(robot, meshes, link, geometry)
+    return suggest_inertial(link, geometry.properties, fallback_density, note)
 
 
 def format_inertial(body: MassProperties, comment: str | None = None) -> str:
@@ -70,7 +142,7 @@ def format_inertial(body: MassProperties, comment: str | None = None) -> str:
     ixy, ixz, iyz = (0.0 if abs(v) <= floor else v for v in (ixy, ixz, iyz))
     lines = ["<inertial>"]
     if comment:
-        lines.append(f"  <!-- mass {comment.replace('--', '-')} -->")
+        lines.append(f"  <!-- {comment.replace('--', '-')} -->")
     lines += [
         f'  <origin xyz="{_vec(body.center_of_mass)}" rpy="0 0 0"/>',
         f'  <mass value="{_num(body.mass)}"/>',
@@ -91,3 +163,33 @@ def _num(value: float) -> str:
 
 def _vec(values) -> str:
     return " ".join(_num(v) for v in values)
+
+
+def select_suggestions(robot: Robot, meshes: MeshContext, rows=None, everything: bool = False,
+                       tolerance: float = 0.5) -> list[Suggestion]:
+    """The suggestions `robotdesc inertia --suggest` prints and `--write` patches.
+
+    A link is chosen when its geometry can be trusted and it has no declared inertia, or its
+    declared tensor differs from the geometry's beyond `tolerance` in its principal moments
+    or as a whole (a rotated tensor: right moments, wrong axes); every measured link with
+    `everything`. Meshes diagnosed as millimetres are scaled first (see `suggest_for_link`).
+
+    Args:
+        rows: the inertia table (`robotdesc.inertia.table.inertia_table`), computed when None.
+    """
+    from robotdesc.inertia.table import inertia_table
+
+    table = rows if rows is not None else inertia_table(robot, meshes, tolerance)
+    errors = {row.link: row.error for row in table}
+    found = []
+    for link in robot.links:
+        if link.name not in errors:
+            continue
+        error = errors[link.name]
+        if not everything and link.inertial is not None and error is not None \
+                and error <= tolerance:
+            continue
+        suggestion = suggest_for_link(robot, meshes, link)
+        if suggestion is not None:
+            found.append(suggestion)
+    return found

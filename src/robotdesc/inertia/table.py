@@ -29,7 +29,9 @@ class InertiaRow:
         declared_com / derived_com: centre of mass in the link frame (m).
         declared_moments / derived_moments: principal moments, ascending (kg*m^2); the
             derived ones at the declared mass.
-        error: the largest relative difference of a principal moment, None if not compared.
+        error: the largest relative difference of a principal moment or of the whole tensor
+            (so a tensor with the right moments about the wrong axes counts), None if not
+            compared.
         cause: the likely cause of a difference, when one is recognised.
         notes: how the geometry was measured, and what could not be.
     """
@@ -103,7 +105,7 @@ def inertia_table(robot: Robot, meshes: MeshContext, tolerance: float = 0.5) -> 
             derived_moments = props.scaled_to_mass(mass).principal_moments()
             if declared_moments is not None and geometry.trusted:
                 comparison = compare_inertia(inertial, props, tolerance)
-                error = max(comparison.moment_errors)
+                error = max(*comparison.moment_errors, comparison.tensor_error)
                 cause = comparison.cause
         notes = geometry.notes + tuple(f"not measured: {u}" for u in geometry.unmeasured)
         rows.append(InertiaRow(

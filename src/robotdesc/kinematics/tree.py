@@ -78,13 +78,18 @@ def has_collision(link: Link | None) -> bool:
     return link is not None and any(c.geometry is not None for c in link.collisions)
 
 
-def adjacent_pairs(robot: Robot, with_geometry: Iterable[str]) -> set[tuple[str, str]]:
+def adjacent_pairs(robot: Robot, with_geometry: Iterable[str],
+                   collapse_fixed: bool = False) -> set[tuple[str, str]]:
     """Pairs of links with geometry that MoveIt calls adjacent (sorted name pairs).
 
     Two links are adjacent when a joint connects them, or when the path between them in the
     tree passes only through links without collision geometry (as MoveIt's Setup Assistant
-    connects the neighbours of a geometry-less link).
+    connects the neighbours of a geometry-less link). With `collapse_fixed`, links joined by
+    fixed joints are first merged into one rigid body: links of one body are adjacent, and
+    so are links of bodies that a joint (or a chain of bodies without geometry) connects.
     """
+    if collapse_fixed:
+        return _collapsed_adjacent_pairs(robot, set(with_geometry))
     solid = set(with_geometry)
     neighbours: dict[str, set[str]] = defaultdict(set)
     for joint in robot.joints:
@@ -103,6 +108,33 @@ def adjacent_pairs(robot: Robot, with_geometry: Iterable[str]) -> set[tuple[str,
                 pairs.add(tuple(sorted((start, name))))
             else:
                 todo.extend(neighbours[name])
+    return pairs
+
+
+def _collapsed_adjacent_pairs(robot: Robot, solid: set[str]) -> set[tuple[str, str]]:
+    head = body_of(robot)
+    members: dict[str, list[str]] = defaultdict(list)
+    for name in sorted(solid):
+        members[head.get(name, name)].append(name)
+    neighbours: dict[str, set[str]] = defaultdict(set)
+    for joint in robot.joints:
+        a, b = head.get(joint.parent, joint.parent), head.get(joint.child, joint.child)
+        if a != b:
+            neighbours[a].add(b)
+            neighbours[b].add(a)
+    pairs: set[tuple[str, str]] = set()
+    for body, names in members.items():
+        pairs.update(tuple(sorted((x, y))) for i, x in enumerate(names) for y in names[i + 1:])
+        todo, seen = list(neighbours[body]), {body}
+        while todo:
+            other = todo.pop()
+            if other in seen:
+                continue
+            seen.add(other)
+            if members.get(other):
+                pairs.update(tuple(sorted((x, y))) for x in names for y in members[other])
+            else:
+                todo.extend(neighbours[other])
     return pairs
 
 

@@ -105,8 +105,10 @@ def moving_link_without_inertial(robot: Robot, ctx: RuleContext) -> Iterator[Fin
 def non_positive_mass(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a negative mass, or a mass of zero on a link moved by a joint.
 
-    A zero mass on a link attached by a fixed joint (a tool frame, a sensor frame) is
-    fine: it is merged into its parent.
+    A zero mass on a link attached by a fixed joint (a tool frame, a sensor frame) is not
+    reported: Gazebo lumps it into its parent, which has a mass. Two zero-mass links in a
+    row on fixed joints are C103's (Gazebo lumps them into NaN); a pure frame is best
+    written without `<inertial>`.
 
     Why is this bad?
     No body has a negative mass, and a moving body without mass makes the equations of
@@ -155,11 +157,14 @@ def non_positive_mass(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
 
 @rule("I103", "inertia-not-positive-definite", family=FAMILY, severity=Severity.ERROR)
 def inertia_not_positive_definite(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
-    """Finds an inertia tensor with a negative principal moment, or, on a moving link with
-    mass, one that is not positive definite (a zero tensor, or zero about some axis).
+    """Finds an inertia tensor with a negative principal moment, or, on a link with mass,
+    one that is not positive definite (a zero tensor, or zero about some axis), moving or
+    not: a root link or a fixed link too.
 
     A point mass (zero tensor) on a link attached by a fixed joint is allowed: it is lumped
-    into its parent's body.
+    into its parent's body. A singular tensor that is not zero (rank 1 or 2, a rod or a
+    plate with no thickness) is reported on every link: MuJoCo refuses such a body and
+    Drake warns, even on a root link.
 
     Why is this bad?
     A rigid body's inertia tensor is positive definite. Physics engines invert it: a zero
@@ -199,19 +204,25 @@ def inertia_not_positive_definite(robot: Robot, ctx: RuleContext) -> Iterator[Fi
         moments = principal_moments(inertial.inertia.matrix())
         scale = max(abs(m) for m in moments)
         where = inertial.inertia.where or _where(link)
+        joint = parents.get(link.name)
+        lumped = joint is not None and joint.type == "fixed"
+        role = ("moves" if is_moving(link, parents) else "is fixed to its parent" if lumped
+                else "is a root link")
         if scale <= _NEGLIGIBLE * minimum_trace(inertial.mass):
-            if is_moving(link, parents):
+            if not lumped:
                 shown = "is zero" if scale == 0 else f"is zero (largest moment {scale:.3g})"
-                yield Finding(f"link '{link.name}' moves and has a mass of {inertial.mass:g} "
-                              f"kg, but its inertia tensor {shown}", where, link_element(link))
+                yield Finding(f"link '{link.name}' {role} and has a mass of "
+                              f"{inertial.mass:g} kg, but its inertia tensor {shown}", where,
+                              link_element(link))
         elif moments[0] < -1e-9 * scale:
             yield Finding(f"link '{link.name}': the inertia tensor has a negative principal "
                           f"moment ({_moments(moments)} kg*m^2); no body has one",
                           where, link_element(link))
-        elif is_moving(link, parents) and moments[0] <= 1e-12 * scale:
-            yield Finding(f"link '{link.name}' moves and has a mass of {inertial.mass:g} kg, "
+        elif moments[0] <= 1e-12 * scale:
+            yield Finding(f"link '{link.name}' {role} and has a mass of {inertial.mass:g} kg, "
                           f"but its inertia tensor is singular (principal moments "
-                          f"{_moments(moments)} kg*m^2)", where, link_element(link))
+                          f"{_moments(moments)} kg*m^2): MuJoCo refuses the body, Drake warns",
+                          where, link_element(link))
 
 
 @dataclass(frozen=True)
@@ -425,14 +436,19 @@ def fixed_link_without_inertial(robot: Robot, ctx: RuleContext) -> Iterator[Find
     meant for dynamics.
 
     Why is this bad?
-    Consumers disagree about such a link. Gazebo merges it into its parent (nothing
-    added), but PyBullet, unless told to merge fixed links, gives every link without
-    `<inertial>` a mass of 1 kg and moments of 1 kg*m^2: a tool frame or a camera frame
-    becomes a phantom kilogram at the end of the arm. Writing the `<inertial>` (a zero
-    mass for a pure frame) makes every consumer agree.
+    Consumers disagree about such a link. Gazebo lumps it into its parent (nothing added),
+    but PyBullet, unless told to merge fixed links, gives every link without `<inertial>`
+    a mass of 1 kg and moments of 1 kg*m^2: a tool frame or a camera frame becomes a
+    phantom kilogram at the end of the arm.
+
+    The fix is on PyBullet's side (`flags=p.URDF_MERGE_FIXED_LINKS`), or the real mass of
+    what the frame carries. Not a zero-mass `<inertial>`: Gazebo lumps a chain of zero-mass
+    links into a NaN centre of mass (C103), and drops a massless body kept by
+    `disableFixedJointLumping` (C101).
 
     Off by default (most descriptions keep sensor and tool frames without `<inertial>`):
-    turn it on with `--select I107` or in the config when the model is for PyBullet.
+    turn it on with `--select I107` or in the config when the model is for PyBullet. C104
+    reports every link PyBullet weighs at 1 kg, moving or fixed.
 
     Example
     ```xml
@@ -442,13 +458,13 @@ def fixed_link_without_inertial(robot: Robot, ctx: RuleContext) -> Iterator[Find
         <inertial><mass value="1"/>
           <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
       </link>
-      <link name="tool0"/>
+      <link name="camera"/>
       <joint name="shoulder" type="continuous"><parent link="base"/><child link="arm"/></joint>
-      <joint name="flange" type="fixed"><parent link="arm"/><child link="tool0"/></joint>
+      <joint name="camera_mount" type="fixed"><parent link="arm"/><child link="camera"/></joint>
     </robot>
     ```
 
-    Use instead:
+    Use instead (the camera's real mass; or load with URDF_MERGE_FIXED_LINKS):
     ```xml
     <robot name="arm">
       <link name="base"/>
@@ -456,12 +472,12 @@ def fixed_link_without_inertial(robot: Robot, ctx: RuleContext) -> Iterator[Find
         <inertial><mass value="1"/>
           <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
       </link>
-      <link name="tool0">
-        <inertial><mass value="0"/>
-          <inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial>
+      <link name="camera">
+        <inertial><mass value="0.07"/>
+          <inertia ixx="4e-5" ixy="0" ixz="0" iyy="1e-5" iyz="0" izz="4e-5"/></inertial>
       </link>
       <joint name="shoulder" type="continuous"><parent link="base"/><child link="arm"/></joint>
-      <joint name="flange" type="fixed"><parent link="arm"/><child link="tool0"/></joint>
+      <joint name="camera_mount" type="fixed"><parent link="arm"/><child link="camera"/></joint>
     </robot>
     ```
     """
@@ -473,7 +489,7 @@ def fixed_link_without_inertial(robot: Robot, ctx: RuleContext) -> Iterator[Find
         if link.inertial is None and joint is not None and joint.type == "fixed":
             yield Finding(f"link '{link.name}' (fixed joint '{joint.name}') has no <inertial>: "
                           "PyBullet gives it 1 kg and moments of 1 kg*m^2 unless fixed links "
-                          "are merged; write a zero mass if it is a pure frame",
+                          "are merged (URDF_MERGE_FIXED_LINKS)",
                           link.where, f"link:{link.name}")
 
 

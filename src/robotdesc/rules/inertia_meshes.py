@@ -7,6 +7,7 @@ as `ctx.meshes`. numpy is imported inside the checks, so registering them costs 
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Iterator
 from dataclasses import dataclass
 
@@ -31,10 +32,145 @@ def _measured(robot: Robot, ctx: RuleContext) -> Iterator[tuple[Link, object]]:
             yield link, geometry
 
 
-def _fix(link: Link, geometry) -> str:
-    from robotdesc.inertia.suggest import suggest_inertial
+def _fix(robot: Robot, ctx: RuleContext, link: Link) -> str | None:
+    """The suggested `<inertial>` block (meshes in millimetres scaled first)."""
+    from robotdesc.inertia.suggest import suggest_for_link
 
-    return suggest_inertial(link, geometry.properties).block
+    found = suggest_for_link(robot, ctx.meshes, link)
+    return found.block if found is not None else None
+
+
+def _both_sources(ctx: RuleContext, link: Link) -> list:
+    """The link's collision and visual geometry (each once; a link with only one kind
+    gives it once), measured completely, or [] when a part could not be measured."""
+    found, seen = [], set()
+    for source in ("collision", "visual"):
+        geometry = ctx.meshes.link_geometry(link, source)
+        if not geometry.source or geometry.source in seen:
+            continue
+        seen.add(geometry.source)
+        if not geometry.complete or geometry.bounds is None:
+            return []
+        found.append(geometry)
+    return found
+
+
+def _union_bounds(geometries) -> tuple | None:
+    """The axis-aligned box (m, link frame) around every geometry given, None for none."""
+    if not geometries:
+        return None
+    low = tuple(min(g.bounds[0][i] for g in geometries) for i in range(3))
+    high = tuple(max(g.bounds[1][i] for g in geometries) for i in range(3))
+    return low, high
+
+
+def _spread(link: Link) -> tuple[float, float, float]:
+    """Second moments of the declared mass about its centre along the link's x, y, z axes
+    (m^2): Sigma = (trace(I) / 2 - I) / m, from the declared tensor in link axes."""
+    from robotdesc.inertia.compare import declared_tensor
+
+    tensor = declared_tensor(link.inertial)
+    half_trace = (tensor[0][0] + tensor[1][1] + tensor[2][2]) / 2.0
+    mass = link.inertial.mass
+    return tuple((half_trace - tensor[i][i]) / mass for i in range(3))  # type: ignore[return-value]
+
+
+#: Relative slack on the certain bound: values written with few digits, rounded meshes.
+_BOUND_SLACK = 0.02
+
+
+def _impossible_axes(link: Link, bounds) -> list[tuple[str, float, float]]:
+    """(axis, declared spread sigma (m), largest possible (m)) for every link axis along which
+    the declared tensor spreads the mass wider than any distribution inside `bounds` can:
+    the variance of a quantity confined to an interval of width w is at most (w/2)^2."""
+    low, high = bounds
+    out = []
+    for axis, second, lo, hi in zip("xyz", _spread(link), low, high):
+        limit = ((hi - lo) / 2.0) ** 2
+        if second > limit * (1.0 + _BOUND_SLACK) ** 2 + 1e-12:
+            out.append((axis, second ** 0.5, limit ** 0.5))
+    return out
+
+
+def _certain_violation(ctx: RuleContext, link: Link) -> tuple[list, tuple] | None:
+    """(the impossible axes, the geometry's bounds) when I204 applies to the link."""
+    if link.inertial is None or link.inertial.inertia is None or not has_mass(link):
+        return None
+    bounds = _union_bounds(_both_sources(ctx, link))
+    if bounds is None:
+        return None
+    axes = _impossible_axes(link, bounds)
+    return (axes, bounds) if axes else None
+
+
+@rule("I204", "inertia-impossible-for-geometry", family=FAMILY, severity=Severity.WARNING,
+      needs=NEEDS)
+def inertia_impossible_for_geometry(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a declared inertia tensor that no mass distribution inside the link's geometry
+    (visual and collision together, with their scales) could have.
+
+    The declared tensor and mass give the spread of the mass along each link axis,
+    sigma^2 = (trace(I) / 2 - I_aa) / m; a mass confined to an interval of width w has a
+    spread of at most w / 2. The message names the axis, the declared spread and that bound.
+    A tensor that implies a negative spread (negative density) is I104's.
+
+    Why is this bad?
+    It is certain, not a uniform-density guess: whatever the material inside, this tensor
+    belongs to a larger body. Typical causes are a tensor in g*mm^2 or kg*cm^2, one copied
+    from a bigger link, or one computed about another point.
+
+    Example
+    ```xml
+    <link name="finger">
+      <inertial>
+        <mass value="0.05"/>
+        <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.001"/>
+      </inertial>
+      <collision><geometry><box size="0.02 0.02 0.06"/></geometry></collision>
+    </link>
+    ```
+
+    Use instead (`robotdesc inertia --suggest` prints it):
+    ```xml
+    <link name="finger">
+      <inertial>
+        <mass value="0.05"/>
+        <inertia ixx="1.66667e-05" ixy="0" ixz="0" iyy="1.66667e-05" iyz="0" izz="3.33333e-06"/>
+      </inertial>
+      <collision><geometry><box size="0.02 0.02 0.06"/></geometry></collision>
+    </link>
+    ```
+    """
+    if ctx.meshes is None:
+        return
+    for link in robot.links:
+        found = _certain_violation(ctx, link)
+        if found is None:
+            continue
+        axes, (low, high) = found
+        detail = "; ".join(f"along {axis} the declared tensor spreads the mass by "
+                           f"sigma = {sigma:.4g} m, but the geometry allows at most "
+                           f"{bound:.4g} m (half its {2 * bound:.4g} m width)"
+                           for axis, sigma, bound in axes)
+        cause = _unit_cause(ctx, link)
+        yield Finding(f"link '{link.name}': no mass distribution inside its visual and "
+                      f"collision geometry has the declared inertia at "
+                      f"{link.inertial.mass:g} kg: {detail}"
+                      + (f"; likely cause: {cause}" if cause else ""),
+                      link.inertial.inertia.where or link.inertial.where, link_element(link),
+                      _fix(robot, ctx, link))
+
+
+def _unit_cause(ctx: RuleContext, link: Link) -> str | None:
+    """What relates the declared tensor to the geometry's (a unit slip, a rotation, a sign
+    convention), if the numbers show it."""
+    from robotdesc.inertia.compare import compare_inertia
+
+    geometry = ctx.meshes.link_geometry(link)
+    if not geometry.trusted:
+        return None
+    return compare_inertia(link.inertial, geometry.properties,
+                           DeviationOptions.tolerance).cause
 
 
 @dataclass(frozen=True)
@@ -42,25 +178,76 @@ class InertiaMismatchOptions:
     """Options of I201.
 
     Attributes:
-        tolerance: relative difference allowed per principal moment, and for the whole
-            tensor (a real link is not of uniform density: motors and shells shift it).
+        factor: a principal moment this many times larger or smaller than the geometry's is
+            reported.
     """
 
-    tolerance: float = 0.5
+    factor: float = 10.0
+
+
+def _comparisons(robot: Robot, ctx: RuleContext, tolerance: float) -> dict:
+    """Link name -> (link, geometry, comparison) for links whose geometry can be trusted,
+    leaving out those whose tensor is impossible for their geometry (I204's)."""
+    from robotdesc.inertia.compare import compare_inertia
+
+    results = {}
+    for link, geometry in _measured(robot, ctx):
+        if link.inertial.inertia is None or _certain_violation(ctx, link) is not None:
+            continue
+        results[link.name] = (link, geometry,
+                              compare_inertia(link.inertial, geometry.properties, tolerance))
+    return results
+
+
+def _factor(comparison) -> float:
+    """The largest ratio, either way, between a declared and a derived principal moment."""
+    worst = 1.0
+    for declared, derived in zip(comparison.declared_moments, comparison.derived_moments):
+        if declared <= 0 or derived <= 0:
+            return float("inf")
+        worst = max(worst, declared / derived, derived / declared)
+    return worst
+
+
+def _mismatch_findings(robot: Robot, ctx: RuleContext, tolerance: float,
+                       keep) -> Iterator[Finding]:
+    from robotdesc.inertia.compare import mirror_partner
+
+    results = _comparisons(robot, ctx, tolerance)
+    for name, (link, geometry, comparison) in results.items():
+        if not comparison.mismatch(tolerance):
+            continue
+        cause = comparison.cause
+        partner = mirror_partner(name, set(results))
+        if partner and not results[partner][2].mismatch(tolerance):
+            mirror = f"its mirror link '{partner}' agrees with its geometry"
+            cause = f"{cause}; {mirror}" if cause else f"left/right links disagree: {mirror}"
+        if not keep(dataclasses.replace(comparison, cause=cause)):
+            continue
+        worst = max(comparison.moment_errors)
+        yield Finding(
+            f"link '{name}': declared principal moments {_fmt(comparison.declared_moments)} "
+            f"kg*m^2 differ from its {geometry.source} geometry's "
+            f"{_fmt(comparison.derived_moments)} at {link.inertial.mass:g} kg by up to "
+            f"{_percent(worst)} (tensor {_percent(comparison.tensor_error)})"
+            + (f"; likely cause: {cause}" if cause else ""),
+            link.inertial.inertia.where or link.inertial.where, link_element(link),
+            _fix(robot, ctx, link))
 
 
 @rule("I201", "inertia-differs-from-geometry", family=FAMILY, severity=Severity.WARNING,
       options=InertiaMismatchOptions, needs=NEEDS)
 def inertia_differs_from_geometry(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a declared inertia tensor that differs from the one of the link's geometry
-    (collision by default, at uniform density and the declared mass) by more than the
-    tolerance, per principal moment or as a whole.
+    (collision by default, at uniform density and the declared mass) by a factor of 10 or
+    more in a principal moment, or in a way that has a recognised cause.
 
-    The message names the likely cause when the numbers show one: a unit slip (a factor
-    of 1e3, 1e6 or 1e9: grams, millimetres), a rotated tensor (same principal moments,
-    other axes), products of inertia with the CAD sign convention, or a left/right mirror
-    link that agrees with its own geometry. The fix is the `<inertial>` computed from the
-    geometry, at the declared mass.
+    The recognised causes: a unit slip (a factor of 1e3, 1e6 or 1e9: grams, millimetres),
+    a rotated tensor (same principal moments, other axes), products of inertia with the CAD
+    sign convention. A left/right mirror link that agrees with its own geometry is named too.
+    The fix is the `<inertial>` computed from the geometry, at the declared mass (with a mesh
+    diagnosed as millimetres scaled by 0.001 first). Smaller deviations without a cause are
+    I205's (off by default): a real link is not of uniform density.
 
     Why is this bad?
     The tensor decides how the link responds to torque. Values typed by hand, converted
@@ -91,33 +278,69 @@ def inertia_differs_from_geometry(robot: Robot, ctx: RuleContext) -> Iterator[Fi
     </link>
     ```
     """
-    from robotdesc.inertia.compare import compare_inertia, mirror_partner
+    factor = ctx.options.factor if ctx.options else InertiaMismatchOptions.factor
+    tolerance = DeviationOptions.tolerance
+    yield from _mismatch_findings(
+        robot, ctx, tolerance,
+        lambda c: _factor(c) >= factor or _has_cause(c))
 
-    tolerance = ctx.options.tolerance if ctx.options else InertiaMismatchOptions.tolerance
-    measured = {link.name: (link, geometry) for link, geometry in _measured(robot, ctx)}
-    results = {}
-    for name, (link, geometry) in measured.items():
-        if link.inertial.inertia is None:
-            continue
-        results[name] = compare_inertia(link.inertial, geometry.properties, tolerance)
-    for name, comparison in results.items():
-        if not comparison.mismatch(tolerance):
-            continue
-        link, geometry = measured[name]
-        cause = comparison.cause
-        partner = mirror_partner(name, set(results))
-        if partner and not results[partner].mismatch(tolerance):
-            mirror = f"its mirror link '{partner}' agrees with its geometry"
-            cause = f"{cause}; {mirror}" if cause else f"left/right links disagree: {mirror}"
-        worst = max(comparison.moment_errors)
-        yield Finding(
-            f"link '{name}': declared principal moments {_fmt(comparison.declared_moments)} "
-            f"kg*m^2 differ from its {geometry.source} geometry's "
-            f"{_fmt(comparison.derived_moments)} at {link.inertial.mass:g} kg by up to "
-            f"{_percent(worst)} (tensor {_percent(comparison.tensor_error)}, tolerance "
-            f"{_percent(tolerance)})" + (f"; likely cause: {cause}" if cause else ""),
-            link.inertial.inertia.where or link.inertial.where, link_element(link),
-            _fix(link, geometry))
+
+def _has_cause(comparison) -> bool:
+    """The comparison names a cause (set by `_mismatch_findings` for mirror links too)."""
+    return comparison.cause is not None
+
+
+@dataclass(frozen=True)
+class DeviationOptions:
+    """Options of I205.
+
+    Attributes:
+        tolerance: relative difference allowed per principal moment, and for the whole
+            tensor (a real link is not of uniform density: motors and shells shift it).
+    """
+
+    tolerance: float = 0.5
+
+
+@rule("I205", "inertia-deviates-from-uniform-density", family=FAMILY,
+      severity=Severity.INFO, options=DeviationOptions, needs=NEEDS, opt_in=True)
+def inertia_deviates_from_uniform_density(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a declared inertia tensor that differs from the one of the link's geometry at
+    uniform density by more than the tolerance but less than I201's factor, with no
+    recognised cause.
+
+    Off by default: a real link is not of uniform density (motors, gears, hollow shells), so
+    a deviation of 50% or 3x is often right. Turn it on (`--select I205`) to review the
+    inertia of a description whose links are nearly uniform (3D-printed parts, simple
+    shapes).
+
+    Why is this bad?
+    It may not be: it is a hint to compare the tensor with CAD or an identification. A
+    tensor estimated by hand is often off by this much.
+
+    Example
+    ```xml
+    <link name="arm">
+      <inertial><mass value="1"/>
+        <inertia ixx="0.004" ixy="0" ixz="0" iyy="0.004" iyz="0" izz="0.004"/></inertial>
+      <collision><geometry><box size="0.1 0.1 0.3"/></geometry></collision>
+    </link>
+    ```
+
+    Use instead:
+    ```xml
+    <link name="arm">
+      <inertial><mass value="1"/>
+        <inertia ixx="0.00833333" ixy="0" ixz="0" iyy="0.00833333" iyz="0" izz="0.00166667"/></inertial>
+      <collision><geometry><box size="0.1 0.1 0.3"/></geometry></collision>
+    </link>
+    ```
+    """
+    tolerance = ctx.options.tolerance if ctx.options else DeviationOptions.tolerance
+    factor = InertiaMismatchOptions.factor
+    yield from _mismatch_findings(
+        robot, ctx, tolerance,
+        lambda c: _factor(c) < factor and not _has_cause(c))
 
 
 @dataclass(frozen=True)
@@ -136,7 +359,10 @@ class CenterOfMassOptions:
       options=CenterOfMassOptions, needs=NEEDS)
 def center_of_mass_outside_geometry(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a declared centre of mass (`<inertial><origin xyz>`) outside the bounding box
-    of the link's geometry.
+    of the link's geometry, visual and collision together.
+
+    A collision geometry is often simplified (contact spheres on a foot, a box on a sensor):
+    the centre of mass is judged against everything the link is drawn and collides with.
 
     Why is this bad?
     A link's centre of mass lies inside the convex hull of its material, so inside its
@@ -173,10 +399,12 @@ def center_of_mass_outside_geometry(robot: Robot, ctx: RuleContext) -> Iterator[
     for link in robot.links:
         if not has_mass(link):
             continue
-        geometry = ctx.meshes.link_geometry(link)
-        if geometry.bounds is None or not geometry.complete:
+        geometries = _both_sources(ctx, link)
+        bounds = _union_bounds(geometries)
+        if bounds is None:
             continue
-        low, high = geometry.bounds
+        low, high = bounds
+        kinds = " and ".join(g.source for g in geometries)
         com = link.inertial.origin.xyz
         outside = []
         for axis, value, lo, hi in zip("xyz", com, low, high):
@@ -188,11 +416,11 @@ def center_of_mass_outside_geometry(robot: Robot, ctx: RuleContext) -> Iterator[
             if any(abs(v) > 1.0 for v in com) and all(abs(v) / 1000 <= max(abs(lo), abs(hi))
                                                      + 1e-3 for v, lo, hi in zip(com, low, high)):
                 hint = "; the values look like millimetres"
-            yield Finding(f"link '{link.name}': declared centre of mass ({_fmt(com)}) m lies "
-                          f"outside its {geometry.source} geometry's bounds: "
+            yield Finding(f"link '{link.name}': declared centre of mass {_fmt(com)} m lies "
+                          f"outside the bounds of its {kinds} geometry together: "
                           f"{'; '.join(outside)}{hint}",
                           link.inertial.origin.where or link.inertial.where, link_element(link),
-                          _fix(link, geometry) if geometry.trusted else None)
+                          _fix(robot, ctx, link))
 
 
 @dataclass(frozen=True)
@@ -215,8 +443,13 @@ def implausible_density(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a link whose declared mass divided by its geometry's volume is not the density
     of any material a robot is made of.
 
-    The likely cause is named when a factor of 1e3 (mass in grams), 1e6 (a mesh in
-    centimetres) or 1e9 (a mesh in millimetres) brings the density into range.
+    Both the collision and the visual geometry are measured; the link is reported only when
+    neither gives a plausible density (a collision geometry is often a simplification, like
+    the contact spheres of a foot). Placeholders are skipped: links lighter than a gram and
+    geometry smaller than 5 mm. The likely cause is named only when exactly one unit factor
+    (1e3: mass in grams; 1e6: a mesh in centimetres; 1e9: a mesh in millimetres) lands the
+    density among the materials robots are made of (100 to 20 000 kg/m^3), and never for
+    geometry smaller than 2 cm (a stand-in shape says nothing about units).
 
     Why is this bad?
     Either the mass or the geometry is off by a unit: the simulated robot is then a
@@ -245,28 +478,66 @@ def implausible_density(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     ```
     """
     options = ctx.options or DensityOptions()
-    for link, geometry in _measured(robot, ctx):
-        density = link.inertial.mass / geometry.properties.volume
-        if options.min_density <= density <= options.max_density:
+    if ctx.meshes is None:
+        return
+    for link in robot.links:
+        if not has_mass(link) or link.inertial.mass < PLACEHOLDER_MASS:
             continue
-        cause = _density_cause(density, options)
+        measured = []
+        for source in ("collision", "visual"):
+            geometry = ctx.meshes.link_geometry(link, source)
+            if geometry.trusted and geometry.source not in {g.source for g in measured}:
+                measured.append(geometry)
+        if not measured or any(_placeholder(g) for g in measured):
+            continue
+        densities = [link.inertial.mass / g.properties.volume for g in measured]
+        if any(options.min_density <= d <= options.max_density for d in densities):
+            continue  # one of the geometries is plausible: the other is a simplification
+        geometry, density = measured[0], densities[0]
+        small = max(_extent(g) for g in measured) < CAUSE_MIN_SIZE
+        cause = None if small else _density_cause(density)
+        also = (f" (its {measured[1].source} geometry gives {densities[1]:.4g} kg/m^3)"
+                if len(measured) > 1 else "")
         yield Finding(f"link '{link.name}': {link.inertial.mass:g} kg in "
                       f"{geometry.properties.volume:.4g} m^3 of {geometry.source} geometry is "
-                      f"{density:.4g} kg/m^3, outside [{options.min_density:g}, "
+                      f"{density:.4g} kg/m^3{also}, outside [{options.min_density:g}, "
                       f"{options.max_density:g}]" + (f"; likely cause: {cause}" if cause else ""),
                       link.inertial.where, link_element(link))
 
 
-def _density_cause(density: float, options: DensityOptions) -> str | None:
-    causes = ((1e-3, "the mass looks like grams"),
+#: Links lighter than this (kg) are placeholders (a frame given a token mass), as in M115.
+PLACEHOLDER_MASS = 1e-3
+#: Geometry whose largest extent is below this (m) is a placeholder (a 1 mm cube).
+PLACEHOLDER_SIZE = 0.005
+#: Below this largest extent (m) the geometry may be a stand-in: no unit cause is named.
+CAUSE_MIN_SIZE = 0.02
+#: Densities (kg/m^3) of what robots are made of, from hollow plastic shells to tungsten: a
+#: unit factor is named only when it lands the density here.
+TYPICAL_DENSITY = (100.0, 20_000.0)
+
+
+def _extent(geometry) -> float:
+    low, high = geometry.bounds
+    return max(h - lo for lo, h in zip(low, high))
+
+
+def _placeholder(geometry) -> bool:
+    return _extent(geometry) < PLACEHOLDER_SIZE
+
+
+def _density_cause(density: float) -> str | None:
+    """The unit slip whose factor lands the density among typical materials, if exactly one
+    does."""
+    causes = ((1e-3, "the mass looks like grams (1e3 times too large)"),
+              (1e3, "the mass looks 1000 times too small (kg written as tonnes, or divided "
+                    "by 1000 twice)"),
               (1e9, "the geometry looks like millimetres (volume 1e9 times too large)"),
               (1e6, "the geometry looks like centimetres (volume 1e6 times too large)"),
-              (1e-9, ("the geometry looks 1000 times too small (a scale of 0.001 on a mesh "
-                      "already in metres?)")))
-    for factor, cause in causes:
-        if options.min_density <= density * factor <= options.max_density:
-            return cause
-    return None
+              (1e-9, "the geometry looks 1000 times too small (a scale of 0.001 on a mesh "
+                     "already in metres?)"))
+    low, high = TYPICAL_DENSITY
+    fitting = [cause for factor, cause in causes if low <= density * factor <= high]
+    return fitting[0] if len(fitting) == 1 else None
 
 
 def _fmt(values) -> str:

@@ -134,14 +134,13 @@ def limit_lower_above_upper(robot: Robot, ctx: RuleContext) -> Iterator[Finding]
 
 @rule("J104", "non-positive-effort", family=FAMILY, severity=Severity.WARNING)
 def non_positive_effort(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
-    """Finds a revolute, continuous or prismatic joint whose `<limit effort>` is zero or
-    negative.
+    """Finds a revolute, continuous or prismatic joint whose `<limit effort>` is negative.
+
+    A zero effort is the ROS-Industrial convention for "unknown"; J110 reports it (info).
 
     Why is this bad?
-    `effort` is the largest force (N) or torque (N*m) the joint may exert. With 0 an
-    effort-controlled joint cannot move at all (Gazebo and ros2_control clamp commands to
-    it); a negative value is meaningless. Passive joints are better modelled as
-    `continuous`/`revolute` with a realistic effort or as mimic joints.
+    `effort` is the largest force (N) or torque (N*m) the joint may exert; a negative value
+    is meaningless, and Gazebo and ros2_control clamp every command to it.
 
     Example
     ```xml
@@ -149,7 +148,7 @@ def non_positive_effort(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
       <link name="base"/><link name="arm"/>
       <joint name="shoulder" type="revolute">
         <parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>
-        <limit lower="-1" upper="1" effort="0" velocity="2"/>
+        <limit lower="-1" upper="1" effort="-30" velocity="2"/>
       </joint>
     </robot>
     ```
@@ -168,10 +167,51 @@ def non_positive_effort(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     for joint in robot.joints:
         limit = joint.limit
         if joint.type in ACTUATED_TYPES and limit is not None and limit.effort is not None \
-                and limit.effort <= 0:
+                and limit.effort < 0:
             yield Finding(f"joint '{joint.name}' effort limit is {limit.effort:g} "
                           "(must be positive)", limit.where or joint.where,
                           f"joint:{joint.name}")
+
+
+@rule("J110", "unknown-effort-limit", family=FAMILY, severity=Severity.INFO)
+def unknown_effort_limit(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a revolute, continuous or prismatic joint whose `<limit effort>` is 0, the
+    ROS-Industrial convention for "unknown".
+
+    Why is this bad?
+    It is a convention, not an error: ROS-Industrial descriptions write `effort="0"` when the
+    manufacturer publishes no torque limit. But every consumer reads it as a limit: Gazebo and
+    ros2_control clamp effort commands to 0, so an effort-controlled joint never moves.
+    Write the real limit when the description is used for simulation or effort control.
+
+    Example
+    ```xml
+    <robot name="arm">
+      <link name="base"/><link name="arm"/>
+      <joint name="shoulder" type="revolute">
+        <parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>
+        <limit lower="-1" upper="1" effort="0" velocity="2"/>
+      </joint>
+    </robot>
+    ```
+
+    Use instead (the manufacturer's limit, in N*m):
+    ```xml
+    <robot name="arm">
+      <link name="base"/><link name="arm"/>
+      <joint name="shoulder" type="revolute">
+        <parent link="base"/><child link="arm"/><axis xyz="0 0 1"/>
+        <limit lower="-1" upper="1" effort="30" velocity="2"/>
+      </joint>
+    </robot>
+    ```
+    """
+    for joint in robot.joints:
+        limit = joint.limit
+        if joint.type in ACTUATED_TYPES and limit is not None and limit.effort == 0:
+            yield Finding(f"joint '{joint.name}' effort limit is 0, the ROS-Industrial "
+                          "\"unknown\": Gazebo and ros2_control clamp effort commands to 0",
+                          limit.where or joint.where, f"joint:{joint.name}")
 
 
 @rule("J105", "non-positive-velocity", family=FAMILY, severity=Severity.WARNING)

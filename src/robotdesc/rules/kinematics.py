@@ -7,6 +7,7 @@ skipped with a logged note. The others are pure checks of the model.
 from __future__ import annotations
 
 import logging
+import math
 import re
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -188,9 +189,19 @@ def mass_ratio_across_joint(robot: Robot, ctx: RuleContext) -> Iterator[Finding]
         if light < options.min_mass or heavy / light <= options.max_ratio:
             continue
         yield Finding(f"joint '{joint.name}' connects bodies of {parent_mass:g} kg "
-                      f"('{parent_body}') and {child_mass:g} kg ('{child_body}'): ratio "
-                      f"{heavy / light:.0f} > {options.max_ratio:g}",
+                      f"('{parent_body}') and {child_mass:g} kg ('{child_body}'): the "
+                      f"heavier is {_ratio(heavy / light, options.max_ratio)} times the lighter, "
+                      f"above the threshold max_ratio = {options.max_ratio:g}",
                       joint.where, f"joint:{joint.name}")
+
+
+def _ratio(ratio: float, threshold: float) -> str:
+    """The ratio with enough digits to show that it is above `threshold`."""
+    for digits in range(3, 10):
+        text = f"{ratio:.{digits}g}"
+        if float(text) > threshold:
+            return text
+    return repr(ratio)
 
 
 @dataclass(frozen=True)
@@ -201,10 +212,13 @@ class MirrorOptions:
         length_tolerance: largest difference of mirrored origin coordinates (m), compared
             by absolute value so that either mirror plane matches.
         angle_tolerance: largest difference of mirrored angles and limits (rad).
+        family_size: a family of more pairs than this (names equal but for their digits,
+            differing in the same way, like the taxels of a skin) is reported once.
     """
 
     length_tolerance: float = 0.001
     angle_tolerance: float = 0.01
+    family_size: int = 3
 
 
 @rule("K104", "mirrored-joints-differ", family=FAMILY, severity=Severity.WARNING,
@@ -213,8 +227,11 @@ def mirrored_joints_differ(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a left/right pair of joints (left_/right_, l_/r_, _l/_r) whose type, origin,
     axis or range of motion differ beyond the tolerances, allowing for the mirror.
 
-    Origins and axes are compared by the absolute value of each coordinate, limits as the
-    range [lower, upper] or its mirror [-upper, -lower].
+    Origin positions and axes are compared by the absolute value of each coordinate; origin
+    rotations as rotations (angles modulo 2*pi), mirrored through a plane and possibly turned
+    by a half turn (a common way to build the other side); limits as the range
+    [lower, upper] or its mirror [-upper, -lower]. A family of many pairs that differ in the
+    same way (the taxels of a skin) is reported once.
 
     Why is this bad?
     The two sides of a symmetric robot are usually one macro called twice; a difference is
@@ -248,26 +265,47 @@ def mirrored_joints_differ(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     ```
     """
     options = ctx.options or MirrorOptions()
+    families: dict[tuple[str, str], list[tuple[str, str, str]]] = {}
     for first, second in mirror_pairs(joint.name for joint in robot.joints):
         a, b = robot.joint(first), robot.joint(second)
         reason = _mirror_difference(a, b, options)
         if reason:
-            yield Finding(f"mirrored joints '{first}' and '{second}' differ: {reason}",
-                          b.where, f"joint:{second}")
+            key = (_DIGITS.sub("#", second), reason.split(" (", 1)[0].split(" [", 1)[0])
+            families.setdefault(key, []).append((first, second, reason))
+    for (pattern, what), members in families.items():
+        first, second, reason = members[0]
+        joint = robot.joint(second)
+        if len(members) <= options.family_size:
+            for first, second, reason in members:
+                yield Finding(f"mirrored joints '{first}' and '{second}' differ: {reason}",
+                              robot.joint(second).where, f"joint:{second}")
+            continue
+        yield Finding(f"{len(members)} mirrored joint pairs named like '{pattern}' differ in "
+                      f"{what}; the first: '{first}' and '{second}': {reason}",
+                      joint.where, f"joint:{second}")
+
+
+#: Runs of digits, replaced to group joints of one family (`skin_12_joint` -> `skin_#_joint`).
+_DIGITS = re.compile(r"\d+")
 
 
 def _mirror_difference(a: Joint, b: Joint, options: MirrorOptions) -> str:
     if a.type != b.type:
         return f"type {a.type} vs {b.type}"
     length, angle = options.length_tolerance, options.angle_tolerance
-    for what, u, v, tolerance in (("origin xyz", a.origin.xyz, b.origin.xyz, length),
-                                  ("origin rpy", a.origin.rpy, b.origin.rpy, angle),
-                                  ("axis", a.axis or (1.0, 0.0, 0.0), b.axis or (1.0, 0.0, 0.0),
-                                   1e-6)):
-        gap = max(abs(abs(x) - abs(y)) for x, y in zip(u, v))
-        if gap > tolerance:
-            return (f"{what} ({_vector(u)}) vs ({_vector(v)}), |difference| {gap:g} > "
-                    f"{tolerance:g}")
+    gap = max(abs(abs(x) - abs(y)) for x, y in zip(a.origin.xyz, b.origin.xyz))
+    if gap > length:
+        return (f"origin xyz ({_vector(a.origin.xyz)}) vs ({_vector(b.origin.xyz)}), "
+                f"|difference| {gap:g} > {length:g}")
+    rotation_gap = _mirrored_rotation_gap(a.origin.rpy, b.origin.rpy)
+    if rotation_gap > angle:
+        return (f"origin rpy ({_vector(a.origin.rpy)}) vs ({_vector(b.origin.rpy)}): no mirror "
+                f"(with or without a half turn) maps one onto the other; closest "
+                f"{rotation_gap:.3g} rad > {angle:g}")
+    axis_a, axis_b = a.axis or (1.0, 0.0, 0.0), b.axis or (1.0, 0.0, 0.0)
+    gap = max(abs(abs(x) - abs(y)) for x, y in zip(axis_a, axis_b))
+    if gap > 1e-6:
+        return f"axis ({_vector(axis_a)}) vs ({_vector(axis_b)}), |difference| {gap:g} > 1e-06"
     range_a, range_b = joint_range(a), joint_range(b)
     if range_a and range_b and range_a.bounded and range_b.bounded:
         tolerance = length if a.type == "prismatic" else angle
@@ -277,6 +315,36 @@ def _mirror_difference(a: Joint, b: Joint, options: MirrorOptions) -> str:
             return (f"limits [{range_a.lower:g}, {range_a.upper:g}] vs "
                     f"[{range_b.lower:g}, {range_b.upper:g}]")
     return ""
+
+
+#: The reflections a left/right mirror may use (through the yz, xz or xy plane, or none).
+_REFLECTIONS = ((1.0, 1.0, 1.0), (-1.0, 1.0, 1.0), (1.0, -1.0, 1.0), (1.0, 1.0, -1.0))
+#: Half turns about x, y, z (and none), as diagonal matrices.
+_HALF_TURNS = ((1.0, 1.0, 1.0), (1.0, -1.0, -1.0), (-1.0, 1.0, -1.0), (-1.0, -1.0, 1.0))
+
+
+def _mirrored_rotation_gap(rpy_a, rpy_b) -> float:
+    """The smallest rotation angle (rad) between frame b and frame a mirrored through a plane
+    (P R P), possibly turned by a half turn about one of its own or the parent's axes.
+
+    Angles are compared as rotations, so -4.71239 and 1.5708 are the same (modulo 2*pi)."""
+    from robotdesc.inertia.tensor import rpy_rotation
+
+    ra, rb = rpy_rotation(rpy_a), rpy_rotation(rpy_b)
+    best = math.pi
+    for p in _REFLECTIONS:
+        mirrored = [[p[i] * ra[i][j] * p[j] for j in range(3)] for i in range(3)]
+        for k in _HALF_TURNS:
+            for candidate in ([[mirrored[i][j] * k[j] for j in range(3)] for i in range(3)],
+                              [[k[i] * mirrored[i][j] for j in range(3)] for i in range(3)]):
+                best = min(best, _rotation_angle(candidate, rb))
+    return best
+
+
+def _rotation_angle(r1, r2) -> float:
+    """Angle (rad) of the rotation r1^T r2."""
+    trace = sum(r1[k][i] * r2[k][i] for i in range(3) for k in range(3))
+    return math.acos(max(-1.0, min(1.0, (trace - 1.0) / 2.0)))
 
 
 def _vector(values) -> str:
@@ -347,9 +415,14 @@ def mirrored_masses_differ(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
 @rule("K201", "self-collision-at-default", family=FAMILY, severity=Severity.WARNING,
       needs=("meshes", "pinocchio"))
 def self_collision_at_default(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
-    """Finds two links, not connected by a joint, whose collision geometry overlaps in the
-    default configuration (each joint at 0, or mid-range when 0 is outside its limits, as
-    MoveIt sets it).
+    """Finds two links, not adjacent, whose collision geometry overlaps in the default
+    configuration (each joint at 0, or mid-range when 0 is outside its limits, as MoveIt sets
+    it).
+
+    Adjacency is MoveIt Setup Assistant's: links joined by fixed joints are one rigid body and
+    never reported; links whose bodies a joint connects (directly, or through bodies without
+    collision geometry) are adjacent. A pair that also collides at every sampled
+    configuration (links in contact by design, such as a mimic-coupled linkage) is K203's.
 
     Why is this bad?
     A robot that starts in self-collision cannot be planned for: MoveIt rejects the start
@@ -385,22 +458,93 @@ def self_collision_at_default(robot: Robot, ctx: RuleContext) -> Iterator[Findin
     </robot>
     ```
     """
+    found = _self_collisions(robot, ctx, "K201")
+    if found is None:
+        return
+    colliding, always = found
+    for first, second in colliding:
+        if (first, second) in always:
+            continue
+        link = robot.link(second)
+        yield Finding(f"links '{first}' and '{second}' collide in the default configuration "
+                      "(they are not adjacent, even with fixed joints merged)",
+                      link.where if link else None, f"link:{second}")
+
+
+#: The last robot's (default collisions, always-in-contact pairs): K201 and K203 share them.
+_COLLISIONS: dict[str, tuple] = {}
+
+
+def _self_collisions(robot: Robot, ctx: RuleContext, code: str):
+    """(pairs colliding at the default configuration, the subset colliding at every sampled
+    configuration), or None when the check cannot run."""
+    cached = _COLLISIONS.get("last")
+    if cached is not None and cached[0] is robot:
+        return cached[1]
     if sum(tree.has_collision(link) for link in robot.links) < 2:
-        return
-    if not _pinocchio_or_note("K201"):
-        return
+        return None
+    if not _pinocchio_or_note(code):
+        return None
     from robotdesc.kinematics.build import KinematicBuildError
-    from robotdesc.srdf.matrix import default_collisions, prepare_scene
+    from robotdesc.srdf.matrix import always_in_contact, default_collisions, prepare_scene
 
     try:
         prepared = prepare_scene(robot, _mesh_path(robot, ctx))
     except KinematicBuildError:
-        return  # K101 or a structural rule reports it
-    for first, second in default_collisions(prepared):
-        link = robot.link(second)
-        yield Finding(f"links '{first}' and '{second}' collide in the default configuration "
-                      "(they are not connected by a joint)", link.where if link else None,
-                      f"link:{second}")
+        return None  # K101 or a structural rule reports it
+    colliding = default_collisions(prepared)
+    result = (colliding, set(always_in_contact(prepared, colliding)))
+    _COLLISIONS["last"] = (robot, result)
+    return result
+
+
+@rule("K203", "links-always-in-contact", family=FAMILY, severity=Severity.INFO,
+      needs=("meshes", "pinocchio"))
+def links_always_in_contact(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds pairs of links, not adjacent, whose collision geometry overlaps at the default
+    configuration and at every sampled configuration of the joints: links in contact by
+    design (the bars of a mimic-coupled four-bar linkage, a hand's safety box). They are
+    reported once, with the SRDF lines that disable them.
+
+    Why is this bad?
+    It is not a mistake in the URDF, but MoveIt treats the robot as always in
+    self-collision until the SRDF disables these pairs (`robotdesc srdf` writes the whole
+    matrix).
+
+    Example
+    ```xml
+    <!-- two fingers whose collision boxes overlap at every opening -->
+    <robot name="gripper">
+      <link name="palm"/>
+      <link name="left"><collision><geometry><box size="0.1 0.02 0.05"/></geometry></collision></link>
+      <link name="right"><collision><geometry><box size="0.1 0.02 0.05"/></geometry></collision></link>
+      <joint name="left_joint" type="prismatic"><parent link="palm"/><child link="left"/>
+        <axis xyz="1 0 0"/><limit lower="0" upper="0.01" effort="10" velocity="0.1"/></joint>
+      <joint name="right_joint" type="prismatic"><parent link="palm"/><child link="right"/>
+        <axis xyz="-1 0 0"/><limit lower="0" upper="0.01" effort="10" velocity="0.1"/>
+        <mimic joint="left_joint"/></joint>
+    </robot>
+    ```
+
+    Use instead (in the SRDF):
+    ```xml
+    <disable_collisions link1="left" link2="right" reason="Always"/>
+    ```
+    """
+    found = _self_collisions(robot, ctx, "K203")
+    if found is None:
+        return
+    colliding, always = found
+    pairs = [pair for pair in colliding if pair in always]
+    if not pairs:
+        return
+    lines = "; ".join(f'<disable_collisions link1="{a}" link2="{b}" reason="Always"/>'
+                      for a, b in pairs)
+    link = robot.link(pairs[0][1])
+    yield Finding(f"{len(pairs)} link pair(s) are in contact at every sampled configuration "
+                  f"(by design): {', '.join(f'{a}/{b}' for a, b in pairs)}; disable them in the "
+                  f"SRDF: {lines}", link.where if link else robot.where,
+                  f"link:{pairs[0][1]}", "\n".join(lines.split("; ")))
 
 
 def _mesh_path(robot: Robot, ctx: RuleContext):

@@ -1,6 +1,8 @@
 """Classify every link pair as MoveIt's Setup Assistant does: Adjacent, Default, Always, Never.
 
-- Adjacent: a joint connects the links (or only links without collision geometry lie between).
+- Adjacent: the links are one rigid body (joined by fixed joints), or a joint connects their
+  bodies (or only bodies without collision geometry lie between), as MoveIt's Setup Assistant
+  sees them.
 - Default: they collide at the default configuration (each joint at 0, or at the middle of
   its range when 0 is outside it, as MoveIt sets it).
 - Always: they collide in at least `always_fraction` of the samples.
@@ -125,7 +127,7 @@ def prepare_scene(robot: Robot, mesh_path: MeshPath, convex: bool = False) -> Pr
     kinematics = build_model(robot, mesh_path)
     shapes, problems = collision_shapes(robot, mesh_path)
     solid = sorted({shape.link for shape in shapes})
-    adjacent = frozenset(tree.adjacent_pairs(robot, solid))
+    adjacent = frozenset(tree.adjacent_pairs(robot, solid, collapse_fixed=True))
     pairs = tuple(p for p in all_link_pairs(solid) if p not in adjacent)
     empty = tuple(link.name for link in robot.links if link.name not in set(solid))
     return PreparedScene(kinematics, SceneSpec(kinematics.urdf, tuple(shapes), pairs, convex),
@@ -140,6 +142,32 @@ def default_collisions(prepared: PreparedScene) -> list[tuple[str, str]]:
     kinematics: a Pinocchio `Data` for a robot with hundreds of joints takes seconds to
     allocate, and one configuration does not need it.
     """
+    robot = prepared.kinematics.robot
+    return collisions_at(prepared, default_configuration(robot))
+
+
+def always_in_contact(prepared: PreparedScene, pairs: list[tuple[str, str]],
+                      samples: int = 24, seed: int = 0) -> list[tuple[str, str]]:
+    """The pairs of `pairs` that collide in every one of `samples` random configurations
+    (within the limits, mimic joints following their drivers): links in contact by design,
+    such as the bars of a four-bar gripper linkage."""
+    if not pairs:
+        return []
+    robot = prepared.kinematics.robot
+    names, positions = sample_positions(robot, samples, seed)
+    remaining = list(pairs)
+    for row in positions:
+        if not remaining:
+            break
+        configuration = dict(zip(names, (float(v) for v in row)))
+        remaining = collisions_at(prepared, configuration, remaining)
+    return remaining
+
+
+def collisions_at(prepared: PreparedScene, configuration: dict[str, float],
+                  pairs: list[tuple[str, str]] | None = None) -> list[tuple[str, str]]:
+    """The link pairs (default: every non-adjacent pair) that collide at `configuration`
+    (joint name -> rad or m; mimic joints resolved, missing joints at 0)."""
     import coal
 
     from robotdesc.kinematics.geometry import to_coal
@@ -147,8 +175,10 @@ def default_collisions(prepared: PreparedScene) -> list[tuple[str, str]]:
 
     spec = prepared.spec
     robot = prepared.kinematics.robot
-    poses = poses_at(robot, default_configuration(robot))
+    poses = poses_at(robot, configuration)
     world = [poses[shape.link] @ shape.placement for shape in spec.shapes]
+    if pairs is not None:
+        spec = SceneSpec(spec.urdf, spec.shapes, tuple(pairs), spec.convex)
     near = _near_pairs(spec, world)
     by_link: dict[str, list[int]] = {}
     for number, shape in enumerate(spec.shapes):
