@@ -228,7 +228,7 @@ def test_expand_plain_urdf_to_a_file_and_never_over_the_input(project: Path) -> 
     written = (project / "out.urdf").read_text()
     assert "<robot" in written and "_rd_src" not in written
     proc = run("expand", "clean.urdf", "-o", "./clean.urdf", cwd=project)
-    assert proc.returncode == 2 and "refusing to overwrite" in proc.stderr
+    assert proc.returncode == 2 and "refusing to write" in proc.stderr
     assert (project / "clean.urdf").read_text() == CLEAN
 
 

@@ -68,4 +68,4 @@ def test_bad_arguments_exit_2_with_a_message(urdf: Path, tmp_path: Path, args, m
 
 def test_view_refuses_to_overwrite_its_input(urdf: Path) -> None:
     done = run("view", str(urdf), "-o", str(urdf))
-    assert done.returncode == 2 and "refusing to overwrite" in done.stderr
+    assert done.returncode == 2 and "refusing to write" in done.stderr

@@ -1,9 +1,11 @@
 """Link results cached by the hash of their sources and parameters.
 
 `<cache dir>/collision-v<N>/<2 hex>/<key>.npz`: the geometry as arrays and the report as
-JSON, written atomically; an unreadable entry is ignored. A second run on unchanged input
-does no decimation, decomposition or measurement. Bump CACHE_VERSION when a method or a
-measurement changes.
+JSON (with the key it was stored under), written atomically; an entry that is not a
+regular file, is larger than `MAX_ENTRY_BYTES`, holds another key or is unreadable is
+ignored and recomputed (see `robotdesc.cache_dir.read_regular_file`). A second run on
+unchanged input does no decimation, decomposition or measurement. Bump CACHE_VERSION when a
+method or a measurement changes.
 """
 
 from __future__ import annotations
@@ -17,13 +19,15 @@ from pathlib import Path
 
 import numpy as np
 
-from robotdesc.atomic import write_atomically
+from robotdesc.cache_dir import read_regular_file, write_entry
 from robotdesc.collision.result import Finding, LinkOutcome, LinkReport, MeshPart, PrimitivePart
 from robotdesc.model.elements import Box, Capsule, Cylinder, Pose, Sphere
 
 log = logging.getLogger(__name__)
 
 CACHE_VERSION = 1
+#: The largest entry read (the meshes of one link).
+MAX_ENTRY_BYTES = 256 << 20
 _PRIMITIVES = {"Box": Box, "Cylinder": Cylinder, "Sphere": Sphere, "Capsule": Capsule}
 
 
@@ -35,14 +39,18 @@ class CollisionCache:
 
     def get(self, key: str) -> LinkOutcome | None:
         path = self._path(key)
+        raw = read_regular_file(path, MAX_ENTRY_BYTES)
+        if raw is None:
+            return None
         try:
-            with np.load(path, allow_pickle=False) as data:
+            with np.load(io.BytesIO(raw), allow_pickle=False) as data:
                 meta = json.loads(str(data["meta"]))
+                if meta.get("key") != key:
+                    log.debug("collision cache entry %s holds another key", path)
+                    return None
                 meshes = [MeshPart(data[f"v{i}"], data[f"f{i}"], bool(convex))
                           for i, convex in enumerate(meta["convex"])]
-        except FileNotFoundError:
-            return None
-        except (OSError, ValueError, KeyError) as error:
+        except (OSError, ValueError, KeyError, TypeError, AttributeError) as error:
             log.debug("ignoring unreadable collision cache entry %s: %s", path, error)
             return None
         try:
@@ -60,7 +68,8 @@ class CollisionCache:
             return
         meshes = [p for p in outcome.parts if isinstance(p, MeshPart)]
         primitives = [p for p in outcome.parts if isinstance(p, PrimitivePart)]
-        meta = {"report": outcome.report.to_dict(), "convex": [p.convex for p in meshes],
+        meta = {"key": outcome.key, "report": outcome.report.to_dict(),
+                "convex": [p.convex for p in meshes],
                 "primitives": [{"kind": type(p.geometry).__name__,
                                 "dims": {k: v for k, v in vars(p.geometry).items()
                                          if k != "where"},
@@ -74,7 +83,7 @@ class CollisionCache:
         np.savez(buffer, **arrays)
         path = self._path(outcome.key)
         try:
-            write_atomically(path, buffer.getvalue())
+            write_entry(path, buffer.getvalue())
         except OSError as error:
             log.warning("collision cache not written to %s: %s", self.root, error)
 

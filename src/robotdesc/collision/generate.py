@@ -49,6 +49,7 @@ def generate_collision(robot: Robot, method: str = "decimate", *,
                        links: Sequence[str] | None = None, jobs: int | None = None,
                        use_cache: bool = True, cache_dir: str | None = None,
                        progress: Progress | None = None, scheduler: str | None = None,
+                       allow_absolute_paths: bool = False,
                        **overrides) -> CollisionResult:
     """Make collision geometry for a robot's links and measure it.
 
@@ -66,6 +67,9 @@ def generate_collision(robot: Robot, method: str = "decimate", *,
         scheduler: the address of a Dask scheduler (e.g. "tcp://host:8786"): the links
             run on that cluster, each still in its own process on a Dask worker (needs
             `robotdesc[dask]`; links served from the cache never reach the cluster).
+        allow_absolute_paths: accept `file://` and absolute mesh paths (as the config's
+            `[meshes] allow_absolute_paths` for lint); off: such a mesh, like one reached
+            through `../` or a symlink out of its package, fails its link unread.
 
     Returns:
         Per link: the new geometry and a report (faces, hulls, volume ratio, distances).
@@ -77,7 +81,7 @@ def generate_collision(robot: Robot, method: str = "decimate", *,
     started = time.perf_counter()
     options = replace(options or CollisionOptions(), method=method, **overrides).validated()
     plan = plan_links(robot, options, package_paths, package_map, links, use_cache,
-                      cache_dir)
+                      cache_dir, allow_absolute_paths)
     total = len(plan.sources)
     outcomes: dict[int, LinkOutcome] = {}
     tasks: list[tuple[int, LinkTask]] = []
@@ -167,13 +171,15 @@ class Plan:
 def plan_links(robot: Robot, options: CollisionOptions, package_paths: Sequence[str] = (),
                package_map: Sequence[tuple[str, str]] = (),
                links: Sequence[str] | None = None, use_cache: bool = True,
-               cache_dir: str | None = None) -> Plan:
-    """Resolve each link's sources and compute its key (used by generation and --check)."""
+               cache_dir: str | None = None, allow_absolute_paths: bool = False) -> Plan:
+    """Resolve each link's sources (under the package rules of lint, see sources.py) and
+    compute its key (used by generation and --check)."""
     from robotdesc.mesh.cache import MeshCache, default_cache_dir
 
-    found = link_sources(robot, options.source, package_lookup(robot.source or os.getcwd(),
-                                                               package_paths,
-                                                               package_map))
+    found = link_sources(robot, options.source,
+                         package_lookup(robot.source or os.getcwd(), package_paths,
+                                        package_map),
+                         allow_absolute=allow_absolute_paths)
     if links is not None:
         known = {s.link for s in found}
         missing = [name for name in links if name not in known]

@@ -1,16 +1,29 @@
 """The manifest robotdesc keeps beside its outputs: what it wrote (with hashes), from which
 sources and parameters. It makes three promises checkable: never overwrite a file robotdesc
-did not write, remove only its own stale files, and tell CI whether outputs are current."""
+did not write, remove only its own stale files, and tell CI whether outputs are current.
+
+A manifest is data in a folder anyone may edit: an entry names a file robotdesc may touch
+only when `own_file` accepts it (a name robotdesc writes, relative, inside the folder after
+symlinks, a regular file). The manifest and the files are read without following a FIFO or
+a device (they never hang a run)."""
 
 from __future__ import annotations
 
 import hashlib
 import json
 import os
+import re
+import stat
 from dataclasses import dataclass, field
+
+from robotdesc.cache_dir import read_regular_file
 
 MANIFEST_NAME = "robotdesc-collision.json"
 MANIFEST_FORMAT = 1
+#: The largest manifest read.
+MAX_MANIFEST_BYTES = 16 << 20
+#: The names robotdesc writes in an output folder (see output.py), besides the manifest.
+OWN_NAME = re.compile(r"meshes/[A-Za-z0-9_.-]+\.stl|[A-Za-z0-9_.-]+\.collision\.(urdf|xacro|patch)")
 
 
 @dataclass(frozen=True)
@@ -35,13 +48,37 @@ class Manifest:
 
 def read_manifest(folder: str) -> Manifest | None:
     """The folder's manifest, or None when there is none (or it is unreadable)."""
+    raw = read_regular_file(os.path.join(folder, MANIFEST_NAME), MAX_MANIFEST_BYTES)
+    if raw is None:
+        return None
     try:
-        with open(os.path.join(folder, MANIFEST_NAME), encoding="utf-8") as stream:
-            data = json.load(stream)
+        data = json.loads(raw)
         return Manifest(dict(data["files"]), dict(data["links"]), str(data.get("source", "")),
                         dict(data.get("parameters", {})))
-    except (OSError, ValueError, KeyError, TypeError):
+    except (ValueError, KeyError, TypeError, AttributeError):
         return None
+
+
+def own_file(folder: str, name: object) -> str | None:
+    """The path of manifest entry `name` in `folder` when robotdesc may have written it (so
+    may read, replace or delete it), else None: the name must be one robotdesc writes
+    (`OWN_NAME`: no `..`, no absolute path), lie inside the folder after symlinks, and be a
+    regular file or absent."""
+    if not isinstance(name, str) or not OWN_NAME.fullmatch(name) \
+            or any(part in ("", ".", "..") for part in name.split("/")):
+        return None
+    root = os.path.realpath(folder)
+    path = os.path.join(root, *name.split("/"))
+    parent = os.path.realpath(os.path.dirname(path))
+    if parent != root and os.path.commonpath([root, parent]) != root:
+        return None
+    try:
+        info = os.lstat(path)
+    except FileNotFoundError:
+        return path
+    except OSError:
+        return None
+    return path if stat.S_ISREG(info.st_mode) else None
 
 
 def sha256_bytes(data: bytes) -> str:
@@ -49,8 +86,21 @@ def sha256_bytes(data: bytes) -> str:
 
 
 def sha256_file(path: str) -> str | None:
+    """SHA-256 of a regular file (a symlink is not followed); None when it is absent,
+    unreadable or not a regular file."""
+    flags = os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK | os.O_CLOEXEC
     try:
-        with open(path, "rb") as stream:
-            return sha256_bytes(stream.read())
+        handle = os.open(path, flags)
     except OSError:
         return None
+    digest = hashlib.sha256()
+    try:
+        if not stat.S_ISREG(os.fstat(handle).st_mode):
+            return None
+        while chunk := os.read(handle, 1 << 20):
+            digest.update(chunk)
+    except OSError:
+        return None
+    finally:
+        os.close(handle)
+    return digest.hexdigest()

@@ -16,21 +16,26 @@ Layout in the output folder DIR:
 
 Links that failed keep their original `<collision>` elements and get no files, unless an
 earlier run made outputs for them: those stay, as do the outputs of links not selected this
-time. The source files are only read, never written.
+time. The source files are only read, never written: every file goes through
+`robotdesc.output.write_output`, which refuses the run's inputs and anything that would land
+outside DIR (a symlink, a special file, a subfolder leading elsewhere). A manifest entry is
+read, replaced or deleted only when `manifest.own_file` accepts it (a name robotdesc writes,
+inside DIR); other entries are ignored with a warning.
 """
 
 from __future__ import annotations
 
+import logging
 import os
 import re
 from dataclasses import dataclass
 
 from lxml import etree
 
-from robotdesc.atomic import write_atomically
 from robotdesc.collision.manifest import (
     MANIFEST_NAME,
     Manifest,
+    own_file,
     read_manifest,
     sha256_bytes,
     sha256_file,
@@ -40,7 +45,16 @@ from robotdesc.collision.stl import stl_bytes
 from robotdesc.collision.xacro_patch import XacroPatch, build_patch
 from robotdesc.errors import InputError
 from robotdesc.model.elements import Box, Capsule, Cylinder, MeshRef, Sphere
+from robotdesc.output import (
+    NO_INPUTS,
+    RunInputs,
+    check_output,
+    prepare_output_dir,
+    write_output,
+)
 from robotdesc.source import Span
+
+log = logging.getLogger(__name__)
 
 
 class OutputConflict(InputError):
@@ -67,8 +81,9 @@ def earlier_outputs(out_dir: str, old: Manifest, links: list[str], base: str,
     from robotdesc.model.parse import parse_urdf
 
     def current(name: str) -> bytes:
-        path = os.path.join(out_dir, name)
-        if name not in old.files or sha256_file(path) != old.files[name]:
+        path = own_file(out_dir, name) or os.path.join(out_dir, name)
+        if own_file(out_dir, name) is None or name not in old.files \
+                or sha256_file(path) != old.files[name]:
             raise OutputConflict(
                 f"the earlier outputs of {', '.join(links)} (not made in this run) cannot be "
                 f"kept: {name} is missing or was edited; nothing was written. Make those links "
@@ -138,10 +153,16 @@ def planned_files(result: CollisionResult, urdf_xml: bytes, out_dir: str,
 
 def write_outputs(result: CollisionResult, urdf_xml: bytes, out_dir: str, *,
                   from_xacro: bool, source_dirs: tuple[str, ...] = (),
-                  allow_source_dir: bool = False) -> list[str]:
+                  allow_source_dir: bool = False,
+                  inputs: RunInputs = NO_INPUTS) -> list[str]:
     """Write the planned files and the manifest into `out_dir`; returns the paths written.
 
+    Args:
+        inputs: the files the run read (description, includes, meshes); none is written.
+
     Raises:
+        OutputError: `out_dir` is a file or read-only, or an output would replace an input
+            or leave `out_dir`.
         OutputConflict: `out_dir` holds the source meshes (without `allow_source_dir`), a
             planned file exists that robotdesc did not write (or that was edited since), or
             the earlier outputs of a link not made now (it failed, or was not selected) were
@@ -157,7 +178,12 @@ def write_outputs(result: CollisionResult, urdf_xml: bytes, out_dir: str, *,
                                     for d in source_dirs):
         raise OutputConflict("the output folder holds source meshes; choose another --out "
                              "(or pass --into-source-dir)", Span(out_dir))
+    prepare_output_dir(out_dir)
     old = read_manifest(out_dir) or Manifest()
+    for name in old.files:
+        if own_file(out_dir, name) is None:
+            log.warning("%s: ignoring the manifest entry '%s': not a file robotdesc writes "
+                        "inside %s", os.path.join(out_dir, MANIFEST_NAME), name, out_dir)
     written_links = {o.report.link for o in result.outcomes if o.written}
     keep = [link.name for link in result.robot.links
             if link.name in old.links and link.name not in written_links]
@@ -179,15 +205,19 @@ def write_outputs(result: CollisionResult, urdf_xml: bytes, out_dir: str, *,
         raise OutputConflict(f"refusing to overwrite {len(conflicts)} file(s) robotdesc did "
                              f"not write (or that were edited): {', '.join(sorted(conflicts))}",
                              Span(out_dir))
+    inputs = _not_own(inputs, out_dir, old)
+    for name in [*files, MANIFEST_NAME]:  # all refused before anything is written
+        check_output(os.path.join(out_dir, name), inputs, within=out_dir)
     written = []
     for name, data in sorted(files.items()):
         path = os.path.join(out_dir, name)
         if sha256_file(path) != sha256_bytes(data):
-            write_atomically(path, data)
+            write_output(path, data, inputs, within=out_dir)
             written.append(path)
     for name, digest in old.files.items():  # our own files that are no longer produced
-        path = os.path.join(out_dir, name)
-        if name not in files and sha256_file(path) == digest:
+        path = own_file(out_dir, name)
+        if path is not None and name not in files and sha256_file(path) == digest \
+                and inputs.match(path) is None:
             os.unlink(path)
     manifest = Manifest(
         files={name: sha256_bytes(data) for name, data in files.items()},
@@ -197,8 +227,21 @@ def write_outputs(result: CollisionResult, urdf_xml: bytes, out_dir: str, *,
                   for o in result.outcomes if o.written}},
         source=os.path.relpath(result.robot.source, out_dir) if result.robot.source else "",
         parameters=result.options.key_fields())
-    write_atomically(os.path.join(out_dir, MANIFEST_NAME), manifest.to_json())
+    write_output(os.path.join(out_dir, MANIFEST_NAME), manifest.to_json(), inputs,
+                 within=out_dir)
     return written
+
+
+def _not_own(inputs: RunInputs, out_dir: str, old: Manifest) -> RunInputs:
+    """The inputs less the files an earlier run wrote here, unedited (a description that
+    includes the generated snippet or uses the generated meshes reads them; this run may
+    rewrite them)."""
+    own = set()
+    for name, digest in old.files.items():
+        path = own_file(out_dir, name)
+        if path is not None and sha256_file(path) == digest:
+            own.add(os.path.realpath(path))
+    return RunInputs(tuple(item for item in inputs.items if item.path not in own))
 
 
 def _new_urdf(urdf_xml: bytes, references: dict, package: str | None) -> bytes:

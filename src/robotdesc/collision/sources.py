@@ -1,5 +1,10 @@
 """Each link's source geometry: its meshes resolved, loaded and placed in the link frame.
 
+Meshes resolve under the rules lint uses (`robotdesc.mesh.resolve`): a `package://` file
+stays inside its package, a relative path inside the package holding the file that names it
+(after symlinks), and `file://` or absolute paths only when the config allows them. A
+reference that breaks a rule is a problem of its link (a finding), never read.
+
 The digest of a link's sources (file contents by hash, scale, origin, primitive sizes) is
 computed without loading any mesh (through the mesh cache's stat index), so that an
 unchanged link is served from the cache or checked in CI without reading its meshes.
@@ -10,12 +15,14 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import stat
 from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
 
 from robotdesc.collision.tessellate import pose_matrix, primitive_mesh, transform_points
+from robotdesc.expansion.packages import enclosing_package
 from robotdesc.mesh.resolve import resolve_mesh
 from robotdesc.model.elements import MeshRef, Pose, Robot
 
@@ -49,9 +56,25 @@ class LinkSources:
         return tuple(i.path for i in self.items if i.path)
 
 
-def link_sources(robot: Robot, source: str,
-                 find_package: Callable[[str], str | None]) -> list[LinkSources]:
-    """The links that have geometry of the kind `source` ("visual" or "collision")."""
+def link_sources(robot: Robot, source: str, find_package: Callable[[str], str | None],
+                 allow_absolute: bool = False) -> list[LinkSources]:
+    """The links that have geometry of the kind `source` ("visual" or "collision").
+
+    Args:
+        robot: the parsed robot.
+        source: "visual" or "collision".
+        find_package: package name -> root folder (the lint's resolver chain).
+        allow_absolute: accept `file://` and absolute mesh paths (the config's
+            `allow_absolute_paths`; off by default, as for lint).
+    """
+    roots: dict[str, str | None] = {}
+
+    def package_root(folder: str) -> str | None:
+        if folder not in roots:
+            found = enclosing_package(folder)
+            roots[folder] = str(found[1]) if found else None
+        return roots[folder]
+
     result = []
     for link in robot.links:
         elements = link.visuals if source == "visual" else link.collisions
@@ -62,7 +85,9 @@ def link_sources(robot: Robot, source: str,
             if isinstance(element.geometry, MeshRef):
                 base = _base_dir(element, robot)
                 found = resolve_mesh(element.geometry.filename, base_dir=base,
-                                     find_package=find_package, allow_absolute=True)
+                                     find_package=find_package,
+                                     allow_absolute=allow_absolute,
+                                     relative_root=package_root(base))
                 if not found.ok:
                     problems.append(found.problem.message if found.problem else "unresolved")
                     continue
@@ -117,14 +142,22 @@ def load_link_soup(sources: LinkSources) -> np.ndarray:
 
 
 def file_digest(path: str) -> str | None:
-    """SHA-256 of a file's bytes (no cache)."""
+    """SHA-256 of a regular file's bytes (no cache); None when unreadable or not a regular
+    file (opened without blocking: a FIFO never hangs)."""
     digest = hashlib.sha256()
     try:
-        with open(path, "rb") as stream:
-            while chunk := stream.read(1 << 20):
-                digest.update(chunk)
+        handle = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)
     except OSError:
         return None
+    try:
+        if not stat.S_ISREG(os.fstat(handle).st_mode):
+            return None
+        while chunk := os.read(handle, 1 << 20):
+            digest.update(chunk)
+    except OSError:
+        return None
+    finally:
+        os.close(handle)
     return digest.hexdigest()
 
 

@@ -2,8 +2,11 @@
 
 Exit codes: 0 every link written and within targets and limits (with --check: outputs
 current); 1 a link failed, exceeded a limit or the target, or (--check) outputs are stale;
-2 the description could not be read, an option is invalid, or an output would overwrite a
-file robotdesc did not write.
+2 the description could not be read, an option is invalid, --out is a file or read-only, or
+an output would overwrite a file robotdesc did not write or an input of the run.
+
+Meshes are read under the package rules of lint (`[meshes] allow_absolute_paths` of the
+config decides on absolute and file:// paths).
 """
 
 from __future__ import annotations
@@ -77,6 +80,7 @@ def run(ns: argparse.Namespace) -> int:
     from robotdesc.errors import UsageError
     from robotdesc.expansion import expand_file
     from robotdesc.model.parse import parse_urdf
+    from robotdesc.output import check_output_dir
 
     single = single_input(ns, "collision")
     if not ns.out and not ns.dry_run:
@@ -98,17 +102,21 @@ def run(ns: argparse.Namespace) -> int:
         raise UsageError(str(error)) from None
     if ns.jobs is not None and ns.jobs < 1:
         raise UsageError("--jobs must be at least 1")
+    writing = bool(ns.out) and not ns.dry_run and not ns.check
+    if writing:
+        check_output_dir(ns.out)
     expanded = expand_file(single.source, single.args, options=single.options)
     robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
     package_paths = single.options.package_paths
     package_map = single.options.package_map
+    allow_absolute = single.config.meshes.allow_absolute_paths
 
     if ns.check:
         from robotdesc.collision.check import check_outputs
         from robotdesc.collision.generate import plan_links
 
         plan = plan_links(robot, options, package_paths, package_map, ns.link,
-                          use_cache=not ns.no_cache)
+                          use_cache=not ns.no_cache, allow_absolute_paths=allow_absolute)
         stale = check_outputs(plan, ns.out, every_link=ns.link is None)
         for item in stale:
             sys.stdout.write(f"{item.subject}: {item.reason}\n")
@@ -124,20 +132,25 @@ def run(ns: argparse.Namespace) -> int:
                                         package_paths=package_paths, package_map=package_map,
                                         links=ns.link, jobs=ns.jobs,
                                         use_cache=not ns.no_cache, progress=progress,
-                                        scheduler=ns.scheduler)
+                                        scheduler=ns.scheduler,
+                                        allow_absolute_paths=allow_absolute)
     except ValueError as error:
         raise UsageError(str(error)) from None
-    if ns.out and not ns.dry_run:
+    if writing:
         from robotdesc.collision.output import write_outputs
         from robotdesc.collision.sources import link_sources
+        from robotdesc.linting.inputs import run_inputs
         from robotdesc.expansion.packages import package_lookup
 
         found = link_sources(robot, options.source,
                              package_lookup(robot.source or os.getcwd(), package_paths,
-                                            package_map))
+                                            package_map), allow_absolute=allow_absolute)
         dirs = tuple(sorted({os.path.dirname(p) for s in found for p in s.mesh_paths}))
+        inputs = run_inputs(single.source, config_path=single.config.path,
+                            expanded=expanded, robot=robot, package_paths=package_paths,
+                            package_map=package_map)
         write_outputs(result, expanded.xml, ns.out, from_xacro=expanded.from_xacro,
-                      source_dirs=dirs, allow_source_dir=ns.into_source_dir)
+                      source_dirs=dirs, allow_source_dir=ns.into_source_dir, inputs=inputs)
     if ns.format == "json":
         sys.stdout.write(json.dumps(result.to_dict(), indent=2) + "\n")
     else:

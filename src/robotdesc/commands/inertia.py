@@ -40,16 +40,25 @@ def run_inertia(ns: argparse.Namespace) -> int:
     """The handler: expand, parse, measure, print; exit 0 (2 on unreadable input)."""
     import dataclasses
 
-    from robotdesc.cli import single_input, write_output
+    from robotdesc.cli import single_input
+    from robotdesc.linting.inputs import description_inputs, run_inputs
     from robotdesc.expansion import expand_file
     from robotdesc.inertia.table import inertia_table, render_table
     from robotdesc.mesh.context import MeshContext
     from robotdesc.model.parse import parse_urdf
+    from robotdesc.output import check_output, write_output
 
     single = single_input(ns, "inertia")
     source, config, options = single.source, single.config, single.options
+    if ns.write:
+        check_output(ns.write, description_inputs(source, config.path))
     expanded = expand_file(source, single.args, options=options)
     robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
+    inputs = run_inputs(source, config_path=config.path, expanded=expanded, robot=robot,
+                        package_paths=options.package_paths,
+                        package_map=options.package_map)
+    if ns.write:  # a patch file only: never one of the sources it is made against
+        check_output(ns.write, inputs)
     settings = config.meshes if not ns.source else dataclasses.replace(
         config.meshes, inertia_source=ns.source)
     meshes = MeshContext.for_file(robot, source, settings, tuple(options.package_paths),
@@ -71,7 +80,7 @@ def run_inertia(ns: argparse.Namespace) -> int:
         from robotdesc.inertia.patch import build_patch
 
         patch = build_patch(suggestions)
-        write_output(ns.write, patch.diff.encode("utf-8"))
+        write_output(ns.write, patch.diff.encode("utf-8"), inputs)
         for link, reason in patch.skipped:
             sys.stderr.write(f"robotdesc: not patched: link '{link}': {reason}\n")
         sys.stderr.write(f"robotdesc: wrote {ns.write} ({len(patch.changed)} blocks)\n")

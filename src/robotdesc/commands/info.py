@@ -30,9 +30,11 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
     parser.set_defaults(handler=run_info)
 
 
-def load_robot(ns: argparse.Namespace, verb: str) -> tuple[Any, Any, str]:
-    """Expand and parse the one input file; returns (robot, mesh resolver, source path)."""
+def load_robot(ns: argparse.Namespace, verb: str) -> tuple[Any, Any, str, Any]:
+    """Expand and parse the one input file; returns (robot, mesh resolver, source path,
+    the files the run read as `robotdesc.output.RunInputs`)."""
     from robotdesc.cli import single_input
+    from robotdesc.linting.inputs import run_inputs
     from robotdesc.expansion import expand_file
     from robotdesc.kinematics.resolve import mesh_resolver, package_lookup
     from robotdesc.model.parse import parse_urdf
@@ -42,7 +44,10 @@ def load_robot(ns: argparse.Namespace, verb: str) -> tuple[Any, Any, str]:
     expanded = expand_file(single.source, single.args, options=options)
     robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
     find = package_lookup(expanded.source, options.package_paths, options.package_map)
-    return robot, mesh_resolver(robot, find), single.source
+    inputs = run_inputs(single.source, config_path=single.config.path, expanded=expanded,
+                        robot=robot, package_paths=options.package_paths,
+                        package_map=options.package_map)
+    return robot, mesh_resolver(robot, find), single.source, inputs
 
 
 def parse_positions(items: list[str]) -> dict[str, float]:
@@ -68,7 +73,7 @@ def run_info(ns: argparse.Namespace) -> int:
 
     import_pinocchio("robotdesc info")
     positions = parse_positions(ns.q)
-    robot, mesh_path, _ = load_robot(ns, "info")
+    robot, mesh_path, _, _ = load_robot(ns, "info")
     info = robot_info(robot, mesh_path, positions or None)
     if ns.format == "json":
         sys.stdout.write(json.dumps(info.to_dict(), indent=2) + "\n")

@@ -39,23 +39,23 @@ def run_report(ns: argparse.Namespace) -> int:
     """The handler: lint, gather, render, write."""
     import time
 
-    from robotdesc.cli import write_output
     from robotdesc.commands.view import load_target
     from robotdesc.config import discover_config, load_config
     from robotdesc.report.html import render_html_report
+    from robotdesc.output import write_output
     from robotdesc.report.html_data import collect_report
     from robotdesc.view.forward import parse_assignments
 
     started = time.perf_counter()
     values = parse_assignments(ns.q)
-    _, result, options = load_target(ns, lint=True)
+    _, result, options, inputs = load_target(ns, lint=True)
     config = load_config(ns.config) if ns.config else discover_config(result.target)
     data = collect_report(result, package_paths=options.package_paths,
                           package_map=options.package_map, joint_values=values,
                           max_faces=ns.max_faces, mesh_settings=config.meshes,
                           collision_method=ns.collision, jobs=ns.jobs, view=not ns.no_view)
     page = render_html_report(data).encode("utf-8")
-    write_output(ns.output, page)
+    write_output(ns.output, page, inputs)
     sys.stderr.write(f"robotdesc: wrote {ns.output} ({len(page) / 1e6:.2f} MB, "
                      f"{len(result.diagnostics)} findings; "
                      f"{time.perf_counter() - started:.1f} s)\n")

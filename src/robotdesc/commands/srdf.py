@@ -47,19 +47,23 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
 
 def run_srdf(ns: argparse.Namespace) -> int:
     """The handler: expand, compute the matrix, write SRDF and report; exit 0 (2 on bad input)."""
-    from robotdesc.cli import same_file, write_output
     from robotdesc.commands.info import load_robot
     from robotdesc.errors import UsageError
     from robotdesc.kinematics.optional import import_pinocchio
+    from robotdesc.output import check_output, write_output
     from robotdesc.srdf import compute_matrix, render_report, render_srdf
 
     import_pinocchio("robotdesc srdf")
     if ns.samples < 0 or ns.jobs < 1 or not 0.0 < ns.always_fraction <= 1.0:
         raise UsageError("--samples must be >= 0, --jobs >= 1, --always-fraction in (0, 1]")
-    robot, mesh_path, source = load_robot(ns, "srdf")
-    for target in (ns.output, ns.report):
-        if target and same_file(target, source):
-            raise UsageError(f"refusing to overwrite the input file with {target}")
+    robot, mesh_path, source, inputs = load_robot(ns, "srdf")
+    report_path = ns.report or (_report_name(ns.output) if ns.output else None)
+    for target in (ns.output, report_path):
+        if target:
+            check_output(target, inputs)
+    if ns.output and report_path and os.path.realpath(ns.output) == \
+            os.path.realpath(report_path):
+        raise UsageError("-o and --report name the same file")
     matrix = compute_matrix(robot, mesh_path, samples=ns.samples, seed=ns.seed,
                             workers=ns.jobs, always_fraction=ns.always_fraction,
                             convex=ns.convex)
@@ -68,18 +72,23 @@ def run_srdf(ns: argparse.Namespace) -> int:
                     problem.where.span if problem.where else source, problem.link,
                     problem.message)
     srdf = render_srdf(matrix)
-    report_path = ns.report or (_report_name(ns.output) if ns.output else None)
     if ns.output:
-        write_output(ns.output, srdf.encode("utf-8"))
+        write_output(ns.output, srdf.encode("utf-8"), inputs)
         log.info("wrote %s (%d pairs disabled)", ns.output, len(matrix.disabled()))
     else:
         sys.stdout.write(srdf)
     if report_path:
-        write_output(report_path, render_report(matrix).encode("utf-8"))
+        write_output(report_path, render_report(matrix).encode("utf-8"), inputs)
         log.info("wrote %s", report_path)
     return 0
 
 
-def _report_name(srdf_path: str) -> str:
+def _report_name(srdf_path: str) -> str | None:
+    """NAME.collisions.json beside the SRDF; None when -o is a symlink or a device (e.g.
+    /dev/stdout): nothing is written beside it then."""
+    if os.path.islink(srdf_path) or (os.path.exists(srdf_path)
+                                     and not os.path.isfile(srdf_path)):
+        log.info("no JSON report beside %s (not a regular file; use --report)", srdf_path)
+        return None
     stem, _ = os.path.splitext(srdf_path)
     return stem + ".collisions.json"

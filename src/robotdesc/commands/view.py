@@ -47,21 +47,22 @@ def add_view_arguments(parser: argparse.ArgumentParser) -> None:
                              "display only; default 12000)")
 
 
-def load_target(ns: argparse.Namespace, lint: bool = True) -> tuple[Any, Any, Any]:
+def load_target(ns: argparse.Namespace, lint: bool = True) -> tuple[Any, Any, Any, Any]:
     """Expand and parse the one input, linted when `lint`: (robot, LintResult or None,
-    the expansion options with the config's packages).
+    the expansion options with the config's packages, the files the run read).
 
     Raises:
-        UsageError: not exactly one file, or the output would overwrite the input.
+        UsageError: not exactly one file, or a bad option.
+        OutputError: `ns.output` is an input of the run.
     """
-    from robotdesc.cli import same_file, single_input
+    from robotdesc.cli import single_input
+    from robotdesc.linting.inputs import description_inputs, run_inputs
     from robotdesc.errors import UsageError
-    from robotdesc.source import Span
+    from robotdesc.output import check_output
 
     single = single_input(ns, ns.command)
     source, options = single.source, single.options
-    if same_file(ns.output, source):
-        raise UsageError("refusing to overwrite the input file; choose another -o", Span(source))
+    check_output(ns.output, description_inputs(source, single.config.path))
     if ns.max_faces is not None and ns.max_faces < 1:
         raise UsageError("--max-faces must be at least 1")
     if lint:
@@ -69,20 +70,26 @@ def load_target(ns: argparse.Namespace, lint: bool = True) -> tuple[Any, Any, An
 
         result = lint_file(source, single.config, args=single.cli_args or None,
                            expand_options=options)
-        return result.robot, result, options
-    from robotdesc.expansion import expand_file
-    from robotdesc.model.parse import parse_urdf
+        robot, expanded = result.robot, result.expanded
+    else:
+        from robotdesc.expansion import expand_file
+        from robotdesc.model.parse import parse_urdf
 
-    expanded = expand_file(source, single.args, options=options)
-    return parse_urdf(expanded.xml, expanded.source, expanded.files), None, options
+        result = None
+        expanded = expand_file(source, single.args, options=options)
+        robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
+    inputs = run_inputs(source, config_path=single.config.path, expanded=expanded,
+                        robot=robot, package_paths=options.package_paths,
+                        package_map=options.package_map)
+    return robot, result, options, inputs
 
 
 def run_view(ns: argparse.Namespace) -> int:
     """The handler: lint, build the scene, write the page."""
     import time
 
-    from robotdesc.cli import write_output
     from robotdesc.errors import UsageError
+    from robotdesc.output import write_output
     from robotdesc.view.forward import parse_assignments
     from robotdesc.view.show import SHOW_OPTIONS, show
 
@@ -93,13 +100,13 @@ def run_view(ns: argparse.Namespace) -> int:
         raise UsageError(f"--show: unknown '{unknown[0]}' (choose from "
                          f"{', '.join(SHOW_OPTIONS)})")
     values = parse_assignments(ns.q)
-    robot, result, options = load_target(ns, lint=not ns.no_lint)
+    robot, result, options, inputs = load_target(ns, lint=not ns.no_lint)
     view = show(result if result is not None else robot, values,
                 package_paths=options.package_paths, package_map=options.package_map,
                 visible=visible,
                 max_faces=ns.max_faces)
     page = view.html().encode("utf-8")
-    write_output(ns.output, page)
+    write_output(ns.output, page, inputs)
     doc = view.document
     flagged = sum(1 for link in doc["links"] if link["findings"])
     sys.stderr.write(f"robotdesc: wrote {ns.output} ({len(page) / 1e6:.2f} MB: "

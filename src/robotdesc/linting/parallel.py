@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from typing import Any, Mapping, Sequence
 
 from robotdesc.errors import InputError, RobotdescError
+from robotdesc.linting.inputs import run_inputs
 from robotdesc.linting.result import LintFailure, LintResult
 from robotdesc.linting.targets import LintTarget
 
@@ -97,7 +98,13 @@ def _lint_one(target: LintTarget, args: dict, expand_options: Any, select: Any,
         if keep_exceptions:
             raise
         return _Crash(target.name(), f"{type(exc).__name__}: {exc}", traceback.format_exc())
-    return dataclasses.replace(result, expanded=None, robot=None, variant=target.variant)
+    inputs = run_inputs(result.target, config_path=result.config_path,
+                        expanded=result.expanded, robot=result.robot,
+                        package_paths=getattr(expand_options, "package_paths", ()),
+                        package_map=tuple(getattr(expand_options, "package_map", ()))
+                        + tuple(target.config.packages))
+    return dataclasses.replace(result, expanded=None, robot=None, variant=target.variant,
+                               inputs=inputs)
 
 
 def _context() -> Any:

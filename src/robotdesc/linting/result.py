@@ -33,6 +33,8 @@ class LintResult:
         rules_run: the codes of the rules that ran.
         variant: the matrix arguments of this variant as (name, value) pairs (empty: the
             target is not a matrix variant); see robotdesc.linting.matrix.
+        inputs: the files the lint read (`robotdesc.output.RunInputs`; kept when
+            `expanded` and `robot` are dropped): no output of the run may replace one.
     """
 
     target: str
@@ -43,6 +45,7 @@ class LintResult:
     config_path: str | None = None
     rules_run: tuple[str, ...] = ()
     variant: tuple[tuple[str, str], ...] = ()
+    inputs: Any = None
 
     @property
     def counts(self) -> dict[Severity, int]:

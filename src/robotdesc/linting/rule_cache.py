@@ -4,8 +4,10 @@ Rules that build a Pinocchio model (needs "pinocchio") cost hundreds of millisec
 when nothing changed. Their findings depend only on the expanded document, the rule's
 options, the mesh files the robot references and the versions of robotdesc and its
 backends, so they are stored under a key made of exactly those (mesh files by path, size,
-mtime and inode, as `make` would). Entries are written atomically; an unreadable entry is a
-miss, never an error. `--no-cache` turns it off.
+mtime and inode, as `make` would). Entries are written atomically and record their own
+key; an entry stored under another key, not a regular file, larger than `MAX_ENTRY_BYTES` or
+unreadable is a miss, never an error. `--no-cache` or `ROBOTDESC_CACHE_DIR=off` (a cache
+folder of None) turns it off.
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ import os
 from pathlib import Path
 from typing import Any, Iterable
 
-from robotdesc.atomic import write_atomically
+from robotdesc.cache_dir import read_regular_file, write_entry
 from robotdesc.diagnostics import Finding
 from robotdesc.source import Provenance, Span
 
@@ -25,7 +27,9 @@ log = logging.getLogger(__name__)
 
 #: A rule whose `needs` holds this is cached.
 CACHED_NEED = "pinocchio"
-_FORMAT = 1
+_FORMAT = 2  # 2: the key inside the entry
+#: The largest entry read (findings of one rule on one robot).
+MAX_ENTRY_BYTES = 16 << 20
 
 
 def is_cached(rule: Any) -> bool:
@@ -60,23 +64,32 @@ def rule_key(rule: Any, options: Any, document: bytes, mesh_files: Iterable[str]
     return hashlib.sha256(material.encode()).hexdigest()
 
 
-def load(cache_dir: Path, key: str) -> list[Finding] | None:
-    """The cached findings, or None on a miss."""
-    try:
-        data = json.loads((cache_dir / "rules" / f"{key}.json").read_text("utf-8"))
-        return [_finding(item) for item in data]
-    except FileNotFoundError:
+def load(cache_dir: Path | None, key: str) -> list[Finding] | None:
+    """The cached findings, or None on a miss (or when the cache is off)."""
+    if cache_dir is None:
         return None
-    except (OSError, ValueError, KeyError, TypeError) as exc:
+    raw = read_regular_file(cache_dir / "rules" / f"{key}.json", MAX_ENTRY_BYTES)
+    if raw is None:
+        return None
+    try:
+        data = json.loads(raw)
+        if data["key"] != key:
+            log.debug("rule cache: entry %s was stored under another key", key)
+            return None
+        return [_finding(item) for item in data["findings"]]
+    except (ValueError, KeyError, TypeError, IndexError) as exc:
         log.debug("rule cache: ignoring unreadable entry %s (%s)", key, exc)
         return None
 
 
-def store(cache_dir: Path, key: str, findings: list[Finding]) -> None:
+def store(cache_dir: Path | None, key: str, findings: list[Finding]) -> None:
+    """Record one rule's findings under `key` (None: the cache is off)."""
+    if cache_dir is None:
+        return
     folder = cache_dir / "rules"
     try:
-        write_atomically(folder / f"{key}.json",
-                         json.dumps([_record(f) for f in findings]).encode("utf-8"))
+        write_entry(folder / f"{key}.json", json.dumps(
+            {"key": key, "findings": [_record(f) for f in findings]}).encode("utf-8"))
     except OSError as exc:
         log.warning("rule cache: cannot write in %s (%s)", folder, exc)
 

@@ -1,14 +1,17 @@
 """A file cache of mesh summaries, keyed by the mesh file's content hash and the scale.
 
-Where: `$ROBOTDESC_CACHE_DIR` if set (an empty value, "0", "off" or "none" turns the cache
-off), else `$XDG_CACHE_HOME/robotdesc`, else `~/.cache/robotdesc`. Layout:
+Where: the cache root of `robotdesc.cache_dir` (`$ROBOTDESC_CACHE_DIR`, "off" turns it off,
+else `$XDG_CACHE_HOME/robotdesc`, else `~/.cache/robotdesc`). Layout:
 
     <dir>/meshes-v<N>/<2 hex>/<sha256>.json   a summary (or a mesh error) per content + scale
     <dir>/stat-v<N>/<2 hex>/<sha256>.json     path -> (size, mtime, inode) -> content hash
 
 The stat index lets a warm run skip reading and hashing unchanged files. Writes are atomic
-(a temporary file renamed into place); an unreadable or corrupt entry is ignored (and
-rewritten), never an error. Bump `CACHE_VERSION` whenever loading or summarizing changes.
+(a temporary file renamed into place). Each entry records the key it was stored under (the
+index: the path's hash) and is used only when that matches the key asked for; an entry
+that is not a regular file, is larger than its cap, unreadable or corrupt is ignored (and
+rewritten), never an error (see `robotdesc.cache_dir.read_regular_file`). Bump
+`CACHE_VERSION` whenever loading or summarizing changes.
 
 Plain Python (json, hashlib, no numpy): a warm run reads summaries without importing numpy.
 """
@@ -24,7 +27,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
-from robotdesc.atomic import write_atomically
+from robotdesc.cache_dir import cache_root, read_regular_file, write_entry
 from robotdesc.mesh.errors import MeshError, MeshErrorKind
 from robotdesc.mesh.properties import MassProperties
 from robotdesc.mesh.records import MassMethod, MeshHealth, MeshSummary
@@ -32,20 +35,15 @@ from robotdesc.mesh.records import MassMethod, MeshHealth, MeshSummary
 log = logging.getLogger(__name__)
 
 CACHE_VERSION = 1
-_OFF = {"", "0", "off", "none", "false", "no"}
+#: The largest entry read: a summary or an index record is a few kilobytes.
+MAX_ENTRY_BYTES = 1 << 20
 #: Errors that depend on the limits in force, not on the file alone: never cached.
 _UNCACHED_ERRORS = {MeshErrorKind.TOO_LARGE, MeshErrorKind.UNREADABLE}
 
 
 def default_cache_dir(env: Mapping[str, str] | None = None) -> Path | None:
     """The cache directory the environment asks for, or None when the cache is off."""
-    env = os.environ if env is None else env
-    if "ROBOTDESC_CACHE_DIR" in env:
-        value = env["ROBOTDESC_CACHE_DIR"].strip()
-        return None if value.lower() in _OFF else Path(value).expanduser()
-    xdg = env.get("XDG_CACHE_HOME", "").strip()
-    base = Path(xdg) if xdg else Path(env.get("HOME", str(Path.home()))) / ".cache"
-    return base / "robotdesc"
+    return cache_root(env)
 
 
 class MeshCache:
@@ -84,18 +82,21 @@ class MeshCache:
         path_key = hashlib.sha256(os.path.abspath(path).encode()).hexdigest()
         index_file = _shard(self._stats, path_key)
         known = _read_json(index_file)
-        if isinstance(known, dict) and known.get("stamp") == stamp \
-                and isinstance(known.get("digest"), str):
+        if isinstance(known, dict) and known.get("key") == path_key \
+                and known.get("stamp") == stamp and isinstance(known.get("digest"), str):
             return known["digest"]
         digest = _hash_file(path)
         if digest is not None:
-            self._write(index_file, {"stamp": stamp, "digest": digest})
+            self._write(index_file, {"key": path_key, "stamp": stamp, "digest": digest})
         return digest
 
     def get(self, key: str, path: str = "") -> MeshSummary | MeshError | None:
         """The stored summary (or mesh error) for `key`, or None when absent or corrupt."""
         data = _read_json(_shard(self._entries, key))
-        if data is None:
+        if not isinstance(data, dict):
+            return None
+        if data.get("key") != key:
+            log.debug("mesh cache entry %s not used: stored under another key", key)
             return None
         try:
             if "error" in data:
@@ -108,18 +109,19 @@ class MeshCache:
 
     def put(self, key: str, summary: MeshSummary) -> None:
         """Store a summary (atomically; a failed write is logged once, not raised)."""
-        self._write(_shard(self._entries, key), {"summary": summary_to_json(summary)})
+        self._write(_shard(self._entries, key),
+                    {"key": key, "summary": summary_to_json(summary)})
 
     def put_error(self, key: str, error: MeshError) -> None:
         """Store a mesh error that depends on the file's content alone."""
         if error.kind in _UNCACHED_ERRORS:
             return
         self._write(_shard(self._entries, key),
-                    {"error": {"kind": error.kind.value, "detail": error.detail}})
+                    {"key": key, "error": {"kind": error.kind.value, "detail": error.detail}})
 
     def _write(self, target: str, data: Any) -> None:
         try:
-            write_atomically(target, json.dumps(data, separators=(",", ":")).encode("utf-8"))
+            write_entry(target, json.dumps(data, separators=(",", ":")).encode("utf-8"))
         except OSError as error:
             if not self._write_failed:
                 log.warning("mesh cache not written to %s: %s", self.directory, error)
@@ -176,22 +178,29 @@ def _shard(root: str, digest: str) -> str:
 
 
 def _read_json(path: str) -> Any:
-    try:
-        with open(path, "rb") as stream:
-            return json.loads(stream.read())
-    except FileNotFoundError:
+    data = read_regular_file(path, MAX_ENTRY_BYTES)
+    if data is None:
         return None
-    except (OSError, ValueError) as error:
+    try:
+        return json.loads(data)
+    except ValueError as error:
         log.debug("ignoring unreadable cache entry %s: %s", path, error)
         return None
 
 
 def _hash_file(path: str, block: int = 1 << 20) -> str | None:
     digest = hashlib.sha256()
-    try:
-        with open(path, "rb") as stream:
-            while chunk := stream.read(block):
-                digest.update(chunk)
+    try:  # non-blocking open and a regular-file check: a FIFO put in its place never hangs
+        handle = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)
     except OSError:
         return None
+    try:
+        if not stat.S_ISREG(os.fstat(handle).st_mode):
+            return None
+        while chunk := os.read(handle, block):
+            digest.update(chunk)
+    except OSError:
+        return None
+    finally:
+        os.close(handle)
     return digest.hexdigest()

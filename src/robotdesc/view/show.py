@@ -15,6 +15,7 @@ from typing import Any
 
 from robotdesc.diagnostics import Diagnostic
 from robotdesc.model.elements import Robot
+from robotdesc.output import write_output
 
 SHOW_OPTIONS = ("visual", "collision", "inertia", "findings")
 
@@ -40,8 +41,7 @@ class View:
     def save(self, path: str | os.PathLike[str]) -> str:
         """Write the page to `path` (UTF-8); returns the path written."""
         target = os.fspath(path)
-        with open(target, "w", encoding="utf-8") as out:
-            out.write(self.html())
+        write_output(target, self.html().encode("utf-8"))
         return target
 
     def to_dict(self) -> dict:

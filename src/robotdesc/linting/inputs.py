@@ -1,0 +1,89 @@
+"""The files a command read, gathered for the output writer (`robotdesc.output`), which
+refuses to write over any of them: the description, the files its expansion read, the
+package.xml of every package it used, the config, and the meshes the robot references."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable, Sequence
+from typing import Any
+
+from robotdesc.expansion.packages import enclosing_package, package_lookup
+from robotdesc.mesh.resolve import resolve_mesh
+from robotdesc.model.elements import MeshRef
+from robotdesc.output import RunInputs
+
+
+def description_inputs(source: str | None, config_path: str | None = None) -> RunInputs:
+    """The inputs known before any work: the description and its config (with the
+    package.xml of the package holding the description)."""
+    inputs = RunInputs().adding([source], "the description being read")
+    inputs = inputs.adding([config_path], "the robotdesc config read")
+    if source:
+        found = enclosing_package(os.path.dirname(os.path.abspath(source)))
+        if found is not None:
+            inputs = inputs.adding([os.path.join(found[1], "package.xml")],
+                                   f"package.xml of package '{found[0]}'")
+    return inputs
+
+
+def expansion_inputs(expanded: Any) -> RunInputs:
+    """What an expansion (`robotdesc.expansion.result.Expanded`) read, and the package.xml
+    of every package it resolved."""
+    if expanded is None:
+        return RunInputs()
+    inputs = RunInputs().adding([expanded.source], "the description being read")
+    inputs = inputs.adding([*expanded.files, *expanded.files_read],
+                           "a file the expansion read")
+    for package in expanded.packages:
+        inputs = inputs.adding([os.path.join(package.path, "package.xml")],
+                               f"package.xml of package '{package.name}'")
+    return inputs
+
+
+def mesh_inputs(robot: Any, package_paths: Sequence[str] = (),
+                package_map: Sequence[tuple[str, str]] = ()) -> RunInputs:
+    """The files the robot's `<mesh>` elements name (resolved leniently: every file a
+    reader of this robot might open is protected, whether or not it was allowed)."""
+    if robot is None:
+        return RunInputs()
+    origin = robot.source or os.getcwd()
+    find = package_lookup(origin, tuple(package_paths), tuple(package_map))
+    fallback = os.path.dirname(os.path.abspath(origin))
+    paths = []
+    for ref in _mesh_refs(robot):
+        written_in = ref.where.span.path if ref.where else ""
+        base = os.path.dirname(os.path.abspath(written_in)) if written_in else fallback
+        found = resolve_mesh(ref.filename, base_dir=base, find_package=find,
+                             allow_absolute=True)
+        if found.ok:
+            paths.append(found.path)
+    return RunInputs().adding(paths, "a mesh of the robot")
+
+
+def run_inputs(source: str | None = None, *, config_path: str | None = None,
+               expanded: Any = None, robot: Any = None, package_paths: Sequence[str] = (),
+               package_map: Sequence[tuple[str, str]] = (),
+               extra: Iterable[tuple[str | None, str]] = ()) -> RunInputs:
+    """Every input of a run on one description.
+
+    Args:
+        source: the description as given.
+        config_path: the config file that applied.
+        expanded: its expansion.
+        robot: its parsed model (for the meshes).
+        package_paths, package_map: the package settings the meshes resolve with.
+        extra: more (path, what) pairs, e.g. a baseline read.
+    """
+    inputs = description_inputs(source, config_path) + expansion_inputs(expanded) \
+        + mesh_inputs(robot, package_paths, package_map)
+    for path, what in extra:
+        inputs = inputs.adding([path], what)
+    return inputs
+
+
+def _mesh_refs(robot: Any) -> Iterable[MeshRef]:
+    for link in robot.links:
+        for element in (*link.visuals, *link.collisions):
+            if isinstance(element.geometry, MeshRef):
+                yield element.geometry
