@@ -1,9 +1,10 @@
-"""`robotdesc sim FILE`: drop the robot in MuJoCo, hold its joints, report pass/fail per check,
-the settle time and the real-time factor (collision as written vs generated).
+"""`robotdesc sim FILE`: drop the robot in MuJoCo (or DART), hold its joints, report pass/fail
+per check, the settle time and the real-time factor (collision as written vs generated);
+`--compare` times collision variants (the Engineer papers' table), `--drive` checks that a
+wheeled or tracked robot moves as commanded.
 
 Exit codes: 0 every check passed, 1 a check failed, 2 the input could not be simulated (or
-MuJoCo, the optional `robotdesc[sim]` extra, is not installed). MuJoCo is imported inside
-the handler only.
+the engine, an optional extra, is not installed). Engines are imported inside the handler only.
 """
 
 from __future__ import annotations
@@ -22,8 +23,8 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
                     "nothing explodes, and time the simulation (needs robotdesc[sim]).")
     parser.add_argument("inputs", nargs="+", metavar="FILE | name:=value",
                         help="the URDF/xacro file, then xacro arguments")
-    parser.add_argument("--seconds", type=float, default=2.0,
-                        help="simulated time (s, default: 2)")
+    parser.add_argument("--seconds", type=float, default=None,
+                        help="simulated time (s, default: 2; 0.5 with --compare)")
     parser.add_argument("--collision", choices=("as-is", "generated", "visual"),
                         default="as-is",
                         help="collision geometry of the settle test: as written (default), "
@@ -38,6 +39,32 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
                         help="skip the real-time factor comparison")
     parser.add_argument("--method", default="decimate",
                         help="collision generation method for 'generated' (default: decimate)")
+    parser.add_argument("--engine", choices=("mujoco", "dart"), default="mujoco",
+                        help="physics engine: mujoco (robotdesc[sim], collides convex hulls) "
+                             "or dart (robotdesc[dart], collides triangles, as Gazebo)")
+    parser.add_argument("--timestep", type=float, default=None, metavar="S",
+                        help="time step (s; default: the engine's, 0.002 MuJoCo, 0.001 DART)")
+    parser.add_argument("--compare", metavar="VARIANTS",
+                        help="time collision variants, e.g. visual,generated (of as-is, "
+                             "visual, generated): triangles, RTF by CPU and wall time, "
+                             "collision time per step, ratios (--seconds default 0.5)")
+    parser.add_argument("--drive", action="store_true",
+                        help="drive test: straight, spin in place, arc; achieved vs "
+                             "commanded velocity")
+    parser.add_argument("--drive-config", action="append", default=[], metavar="YAML",
+                        help="diff_drive_controller configuration (default: the YAML files "
+                             "of the package and its sibling packages)")
+    parser.add_argument("--left-wheels", metavar="J1,J2", help="left drive joints")
+    parser.add_argument("--right-wheels", metavar="J1,J2", help="right drive joints")
+    parser.add_argument("--wheel-radius", type=float, metavar="M", help="wheel radius (m)")
+    parser.add_argument("--wheel-separation", type=float, metavar="M",
+                        help="distance between left and right wheels (m)")
+    parser.add_argument("--drive-speed", type=float, default=0.2, metavar="V",
+                        help="commanded speed of the drive test (m/s, default: 0.2)")
+    parser.add_argument("--tolerance", type=float, default=0.3,
+                        help="drive test: largest relative velocity error (default: 0.3)")
+    parser.add_argument("--format", choices=("text", "json"), default="text",
+                        help="output format (json carries every figure)")
     parser.set_defaults(handler=run_sim)
 
 
@@ -48,8 +75,14 @@ def run_sim(ns: argparse.Namespace) -> int:
     from robotdesc.sim.backend import import_mujoco
 
     single = single_input(ns, "sim")
+    if ns.seconds is None:
+        ns.seconds = 0.5 if ns.compare else 2.0
     if not ns.seconds > 0 or not ns.drop_height >= 0:
         raise UsageError("--seconds must be positive and --drop-height >= 0")
+    if ns.timestep is not None and not ns.timestep > 0:
+        raise UsageError("--timestep must be positive")
+    if ns.compare or ns.drive or ns.engine != "mujoco" or ns.format == "json":
+        return run_engine_checks(ns, single)
     import_mujoco()  # fail early, with the install hint, before any expansion work
 
     import dataclasses
@@ -113,3 +146,135 @@ def write_rtf(out: TextIO, comparison: Any) -> None:
     if comparison.ratio is not None:
         out.write(f"  ratio {comparison.candidate.label} / {comparison.baseline.label}: "
                   f"{comparison.ratio:.2f}\n")
+
+
+def run_engine_checks(ns: argparse.Namespace, single: Any) -> int:
+    """--engine, --compare, --drive and JSON output: exit 0 pass, 1 fail, 2 input error."""
+    import json
+
+    from robotdesc.errors import UsageError
+    from robotdesc.sim.compare import compare_variants, parse_variants
+    from robotdesc.sim.convert import SceneOptions
+    from robotdesc.sim.engine import engine as engine_named
+    from robotdesc.sim.hold import HoldOptions
+    from robotdesc.sim.load import load_sim_input
+
+    engine = engine_named(ns.engine)
+    engine.require()  # fail early, with the install hint, before any expansion work
+    try:
+        variants = parse_variants(ns.compare) if ns.compare else None
+    except ValueError as error:
+        raise UsageError(str(error)) from None
+    loaded = load_sim_input(single.source, single.args, single.options)
+    package_map = tuple(single.options.package_map)
+    hold = HoldOptions(mode="passive" if ns.passive else "position")
+    scene_options = SceneOptions(timestep=ns.timestep or engine.default_timestep,
+                                 drop_height=ns.drop_height,
+                                 self_collision=ns.self_collision)
+    progress = _progress_writer(sys.stderr, engine.name)
+    document: dict[str, Any] = {"robot": loaded.robot.name, "engine": engine.name}
+    passed = True
+    text = ns.format == "text"
+    if variants is None and not ns.drive:  # no settle test on DART yet: as-is vs generated
+        variants = ("as-is",) if ns.no_rtf else ("as-is", "generated")
+    if variants is not None:
+        comparison = compare_variants(engine, loaded.robot, loaded.meshes, variants,
+                                      scene_options, ns.seconds, hold, ns.method, package_map,
+                                      progress)
+        document["compare"] = comparison.as_dict()
+        if text:
+            write_comparison(sys.stdout, loaded.robot.name, comparison)
+    if ns.drive:
+        report = _drive(ns, single.source, loaded, engine, scene_options, hold, progress)
+        document["drive"] = report.as_dict()
+        passed = passed and report.passed
+        if text:
+            write_drive(sys.stdout, report)
+    if not text:
+        sys.stdout.write(json.dumps(document, indent=2, allow_nan=True) + "\n")
+    return 0 if passed else 1
+
+
+def _drive(ns: argparse.Namespace, source: str, loaded: Any, engine: Any, scene_options: Any,
+           hold: Any, progress: Any) -> Any:
+    """The drive test with the configured or given drive joints."""
+    from robotdesc.errors import UsageError
+    from robotdesc.sim.drive import (
+        DriveGroup,
+        DriveOptions,
+        drive_test,
+        groups_from_config,
+        resolve_groups,
+    )
+
+    if bool(ns.left_wheels) != bool(ns.right_wheels):
+        raise UsageError("--left-wheels and --right-wheels go together")
+    if ns.left_wheels:
+        groups = (DriveGroup("options", _names(ns.left_wheels), _names(ns.right_wheels),
+                             ns.wheel_separation, ns.wheel_radius),)
+    else:
+        import dataclasses
+
+        groups = tuple(dataclasses.replace(
+            group, separation=ns.wheel_separation or group.separation,
+            radius=ns.wheel_radius or group.radius)
+            for group in groups_from_config(source, ns.drive_config))
+    groups = resolve_groups(loaded.robot, groups)
+    try:
+        options = DriveOptions(speed=ns.drive_speed, tolerance=ns.tolerance)
+    except ValueError as error:
+        raise UsageError(str(error)) from None
+    scene = engine.build(loaded.robot, loaded.meshes, scene_options, hold)
+    return drive_test(scene, loaded.robot, groups, options, progress)
+
+
+def _names(text: str) -> tuple[str, ...]:
+    return tuple(part.strip() for part in text.split(",") if part.strip())
+
+
+def _progress_writer(out: TextIO, engine: str) -> Any:
+    """A progress callback writing one line per report to `out` (stderr)."""
+    def progress(label: str, simulated: float, total: float, wall: float) -> None:
+        rate = simulated / wall if wall > 0 else 0.0
+        out.write(f"robotdesc: {engine} {label}: {simulated:.2f} of {total:.2f} s simulated "
+                  f"in {wall:.0f} s (RTF {rate:.3g})\n")
+        out.flush()
+
+    return progress
+
+
+def write_comparison(out: TextIO, robot: str, comparison: Any) -> None:
+    """The papers' table: one line per collision variant, then the ratios."""
+    from robotdesc.sim.compare import PAPER_SIMPLE_RTF, PAPER_VISUAL_RTF
+
+    first = comparison.variants[0]
+    out.write(f"{robot}: real-time factor in {comparison.engine}, time step "
+              f"{comparison.timestep * 1000:g} ms, {first.simulated:g} s simulated per variant\n")
+    out.write(f"  {'collision':<10} {'geoms':>6} {'triangles':>10} {'RTF cpu':>9} "
+              f"{'RTF wall':>9} {'collision/step':>15} {'step':>10}\n")
+    for v in comparison.variants:
+        out.write(f"  {v.label:<10} {v.geoms:6d} {v.triangles:10d} {v.rtf_cpu:9.3g} "
+                  f"{v.rtf_wall:9.3g} {v.collision_per_step * 1000:12.3g} ms "
+                  f"{v.step_wall * 1000:7.3g} ms\n")
+    for v in comparison.variants[1:]:
+        out.write(f"  ratio {v.label} / {first.label} (RTF by CPU time): "
+                  f"{comparison.ratio(v):.2f}\n")
+    out.write(f"  papers (Gazebo): visual {PAPER_VISUAL_RTF:g}, simple collision "
+              f"{PAPER_SIMPLE_RTF:g}: ratio {PAPER_SIMPLE_RTF / PAPER_VISUAL_RTF:.0f}\n")
+
+
+def write_drive(out: TextIO, report: Any) -> None:
+    """The drive test: achieved against commanded velocity per command."""
+    groups = ", ".join(f"{g.name} ({len(g.left)}+{len(g.right)} wheels, r {g.radius:g} m, "
+                       f"separation {g.separation:g} m"
+                       + (f" x {g.separation_multiplier:g}" if g.separation_multiplier != 1
+                          else "") + ")" for g in report.groups)
+    out.write(f"{report.robot}: drive test in {report.engine}, tolerance "
+              f"{report.tolerance:.0%}; {groups}\n")
+    for r in report.results:
+        status = "PASS" if r.passed else "FAIL"
+        note = "" if r.finite else "  (the state became NaN)"
+        out.write(f"  {status}  {r.command.name:<8} linear {r.linear:7.3f} of "
+                  f"{r.command.linear:5.3f} m/s, angular {r.angular:7.3f} of "
+                  f"{r.command.angular:5.3f} rad/s{note}\n")
+    out.write(f"  result: {'PASS' if report.passed else 'FAIL'}\n")

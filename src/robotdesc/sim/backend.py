@@ -1,4 +1,5 @@
-"""MuJoCo, the optional physics backend: imported only here, only when a simulation runs."""
+"""The optional physics backends, MuJoCo and DART: imported only here, only when a simulation
+runs."""
 
 from __future__ import annotations
 
@@ -14,7 +15,7 @@ INSTALL_HINT = ('robotdesc sim needs MuJoCo, an optional extra: pip install "rob
 
 
 class SimUnavailable(InputError):
-    """MuJoCo is not installed, so the physics checks cannot run."""
+    """A physics engine is not installed, so the physics checks cannot run (exit 2)."""
 
 
 def import_mujoco() -> ModuleType:
@@ -40,3 +41,23 @@ _log = logging.getLogger(__name__)
 
 def _log_warning(message: str) -> None:
     _log.debug("mujoco: %s", message.strip())
+
+
+#: The requirement of the `dart` extra (pyproject: `[project.optional-dependencies] dart`).
+DART_REQUIREMENT = "dartpy>=6.14"
+DART_INSTALL_HINT = ("robotdesc sim --engine dart needs DART, an optional extra: "
+                     "pip install '.[dart]' in robotdesc's clone "
+                     f"(or pip install '{DART_REQUIREMENT}')")
+
+
+def import_dartpy() -> ModuleType:
+    """The `dartpy` module.
+
+    Raises:
+        SimUnavailable: dartpy is not installed; the message says how to install it.
+    """
+    try:
+        import dartpy
+    except ImportError:
+        raise SimUnavailable(DART_INSTALL_HINT) from None
+    return dartpy
