@@ -88,24 +88,11 @@ def run_inertia(ns: argparse.Namespace) -> int:
 
 
 def _suggestions(robot, meshes, rows, everything: bool) -> list:
-    from robotdesc.inertia.suggest import suggest_inertial
+    """Every link whose tensor is wrong (moments or axes), mm meshes scaled: see
+    `robotdesc.inertia.suggest.select_suggestions`."""
+    from robotdesc.inertia.suggest import select_suggestions
 
-    wanted = {row.link for row in rows
-              if everything or row.error is None or row.error > 0.5}
-    found = []
-    for link in robot.links:
-        geometry = meshes.link_geometry(link)
-        if link.name not in wanted or not geometry.trusted:
-            continue
-        if not everything and link.inertial is not None and _agrees(rows, link.name):
-            continue
-        found.append(suggest_inertial(link, geometry.properties))
-    return found
-
-
-def _agrees(rows, name: str) -> bool:
-    row = next((r for r in rows if r.link == name), None)
-    return row is not None and row.error is not None and row.error <= 0.5
+    return select_suggestions(robot, meshes, rows, everything=everything)
 
 
 def _render_suggestions(suggestions) -> str:
