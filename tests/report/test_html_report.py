@@ -75,7 +75,7 @@ def test_without_matplotlib_the_report_says_how_to_get_plots(tmp_path: Path,
     monkeypatch.setattr(html_plots, "plots_available", lambda: False)
     result = robotdesc.lint(str(write_demo_package(tmp_path)))
     page = render_html_report(collect_report(result, view=False))
-    assert "pip install 'robotdesc[report]'" in _section(page, "plots")
+    assert "pip install '.[report]'" in _section(page, "plots")
     assert "The 3D view was not included" in _section(page, "view")
 
 

@@ -21,7 +21,7 @@ def no_mujoco(monkeypatch):
 def test_import_failure_raises_input_error_with_install_hint(no_mujoco) -> None:
     with pytest.raises(SimUnavailable) as caught:
         backend.import_mujoco()
-    assert 'pip install "robotdesc[sim]"' in str(caught.value)
+    assert 'pip install ".[sim]"' in str(caught.value)
     assert MUJOCO_REQUIREMENT in str(caught.value)
 
 

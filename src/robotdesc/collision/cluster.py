@@ -26,7 +26,7 @@ from robotdesc.errors import UsageError
 
 log = logging.getLogger(__name__)
 
-INSTALL_HINT = 'pip install "robotdesc[dask]"'
+INSTALL_HINT = 'pip install ".[dask]"'
 
 _daemon_lock = threading.Lock()
 _daemon_users = 0

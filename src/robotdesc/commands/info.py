@@ -1,7 +1,7 @@
 """`robotdesc info FILE`: links, joints by type, degrees of freedom, mimic joints, total mass,
 centre of mass (at zero and at `--q name=value ...`) and bounding box; table or JSON.
 
-Needs Pinocchio (`pip install 'robotdesc[kinematics]'`); imported inside the handler.
+Needs Pinocchio (`pip install '.[kinematics]'`); imported inside the handler.
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
         "info", parents=[common, expansion], help="kinematic and mass summary (Pinocchio)",
         description="Links, joints by type, degrees of freedom, mimic joints, total mass, "
                     "centre of mass and bounding box, computed with Pinocchio "
-                    "(install: pip install 'robotdesc[kinematics]').")
+                    "(install: pip install '.[kinematics]').")
     parser.add_argument("inputs", nargs="+", metavar="FILE | name:=value",
                         help="the URDF/xacro file, then xacro arguments")
     parser.add_argument("--q", nargs="+", default=[], metavar="JOINT=VALUE",

@@ -21,7 +21,7 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
         "report", parents=[common, expansion], help="write an HTML report",
         description="Write one self-contained HTML page: findings grouped by link, a 3D view, "
                     "the inertia table (declared against geometry), the collision table and "
-                    "plots (plots need matplotlib: pip install 'robotdesc[report]').")
+                    "plots (plots need matplotlib: pip install '.[report]').")
     add_view_arguments(parser)
     parser.add_argument("-o", "--output", required=True, metavar="HTML",
                         help="the page to write")

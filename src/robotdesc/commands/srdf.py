@@ -1,7 +1,7 @@
 """`robotdesc srdf FILE [--samples N] [--seed S] -o robot.srdf`: the self-collision matrix
 MoveIt's Setup Assistant computes, without ROS, plus a JSON report of per-pair fractions.
 
-Needs Pinocchio (`pip install 'robotdesc[kinematics]'`); imported inside the handler.
+Needs Pinocchio (`pip install '.[kinematics]'`); imported inside the handler.
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
         description="Sample random configurations within the joint limits, check every link "
                     "pair with coal, and write <disable_collisions> for Adjacent, Default, "
                     "Always and Never pairs, as MoveIt's Setup Assistant does "
-                    "(install: pip install 'robotdesc[kinematics]').")
+                    "(install: pip install '.[kinematics]').")
     parser.add_argument("inputs", nargs="+", metavar="FILE | name:=value",
                         help="the URDF/xacro file, then xacro arguments")
     parser.add_argument("-o", "--output", metavar="SRDF",

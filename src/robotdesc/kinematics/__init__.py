@@ -1,7 +1,7 @@
 """Kinematics and dynamics: a Pinocchio model of the robot, facts about it, and checks.
 
 Pinocchio (`pin` on PyPI, which brings the coal collision library) is optional: install it
-with `pip install 'robotdesc[kinematics]'`. The pure helpers (`tree`, `mirror`, `defaults`)
+with `pip install '.[kinematics]'`. The pure helpers (`tree`, `mirror`, `defaults`)
 work without it; `build`, `scene` and `info` import it inside the functions that need it.
 See docs/kinematics.md.
 """

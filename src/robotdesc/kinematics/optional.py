@@ -8,7 +8,7 @@ from types import ModuleType
 from robotdesc.errors import InputError
 
 #: What to tell a user who lacks Pinocchio.
-PINOCCHIO_HINT = "install it with: pip install 'robotdesc[kinematics]'  (the `pin` package)"
+PINOCCHIO_HINT = "install it with: pip install '.[kinematics]'  (the `pin` package)"
 
 
 class KinematicsUnavailable(InputError):

@@ -214,7 +214,7 @@ def _plots_section(data: ReportData) -> str:
 
     if not plots_available():
         return ('<p class="note">Plots need matplotlib: <code>pip install '
-                "'robotdesc[report]'</code>.</p>")
+                "'.[report]'</code>.</p>")
     parts = []
     compared = [(r.link, r.declared_moments, r.derived_moments) for r in data.inertia_rows or ()
                 if r.declared_moments is not None and r.derived_moments is not None]

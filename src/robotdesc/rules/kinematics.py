@@ -1,6 +1,6 @@
 """Kinematics rules (K1xx: the model as Pinocchio and simulators see it; K2xx: self-collision).
 
-K101 and K201 need Pinocchio (`pip install 'robotdesc[kinematics]'`); without it they are
+K101 and K201 need Pinocchio (`pip install '.[kinematics]'`); without it they are
 skipped with a logged note. The others are pure checks of the model.
 """
 

@@ -41,7 +41,7 @@ def fails_settle_test(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     names the link blamed by each failed check: the state became NaN, the energy grew
     instead of decaying, a joint ran away, or a joint limit or mimic constraint broke; or
     MuJoCo refused the link outright (a massless moving link, an impossible inertia).
-    Opt-in (it runs a simulation) and needs MuJoCo: `pip install "robotdesc[sim]"`.
+    Opt-in (it runs a simulation) and needs MuJoCo: `pip install ".[sim]"`.
 
     Why is this bad?
     A model that explodes or falls apart on spawn cannot be simulated or controlled, and the

@@ -10,7 +10,7 @@ from robotdesc.errors import InputError
 
 #: The requirement of the `sim` extra (pyproject: `[project.optional-dependencies] sim`).
 MUJOCO_REQUIREMENT = "mujoco>=3.3"
-INSTALL_HINT = ('robotdesc sim needs MuJoCo, an optional extra: pip install "robotdesc[sim]" '
+INSTALL_HINT = ('robotdesc sim needs MuJoCo, an optional extra: pip install ".[sim]" '
                 f'(or pip install "{MUJOCO_REQUIREMENT}")')
 
 
