@@ -102,7 +102,7 @@ def test_no_scheduler_is_a_usage_error_naming_the_address():
 
 def test_without_distributed_the_error_says_how_to_install_it(monkeypatch):
     monkeypatch.setitem(sys.modules, "distributed", None)  # import fails as if missing
-    with pytest.raises(UsageError, match=r'pip install "robotdesc\[dask\]"'):
+    with pytest.raises(UsageError, match=r'pip install "\.\[dask\]"'):
         run_tasks_on_cluster(faults.square, [1], scheduler=NOBODY, timeout_s=30,
                              on_done=None)
 

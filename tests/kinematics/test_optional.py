@@ -11,7 +11,7 @@ from kinematics.robots import ARM, robot
 
 def test_missing_pinocchio_is_an_input_error_that_says_how_to_install(monkeypatch) -> None:
     monkeypatch.setitem(sys.modules, "pinocchio", None)
-    with pytest.raises(KinematicsUnavailable, match=r"robotdesc\[kinematics\]") as caught:
+    with pytest.raises(KinematicsUnavailable, match=r"pip install '\.\[kinematics\]'") as caught:
         import_pinocchio("robotdesc srdf")
     assert caught.value.exit_code == 2
 
