@@ -11,10 +11,14 @@ from robotdesc.source import Provenance, Span
 
 OVERLAP = b"""<robot name="two">
   <link name="a"><collision><geometry><box size="1 1 1"/></geometry></collision></link>
-  <link name="b"><collision><geometry><box size="1 1 1"/></geometry></collision></link>
+  <link name="b"><collision><origin xyz="-2.8 0 0"/><geometry><box size="1 1 1"/></geometry></collision></link>
   <link name="c"><collision><origin xyz="0 0 10"/><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
-  <joint name="ac" type="fixed"><parent link="c"/><child link="a"/></joint>
-  <joint name="bc" type="fixed"><parent link="c"/><child link="b"/></joint>
+  <link name="d"><collision><origin xyz="0 0 -10"/><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <joint name="ca" type="fixed"><parent link="c"/><child link="a"/></joint>
+  <joint name="cd" type="revolute"><parent link="c"/><child link="d"/><origin xyz="3 0 0"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="db" type="revolute"><parent link="d"/><child link="b"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
 </robot>
 """
 

@@ -39,9 +39,9 @@ def test_findings_are_grouped_by_link(report: str) -> None:
     groups = dict(re.findall(r'<details open data-link="([^"]+)">(.*?)</details>', findings,
                              re.DOTALL))
     assert set(groups) == {"base", "finger_left", "finger_right"}
-    assert "I201" in groups["finger_left"] and "inertia-differs-from-geometry" in findings
+    assert "I204" in groups["finger_left"] and "inertia-impossible-for-geometry" in findings
     assert "missing.stl" in groups["finger_right"]
-    assert re.search(r"<td>I201</td><td>inertia-differs-from-geometry</td>", findings)
+    assert re.search(r"<td>I204</td><td>inertia-impossible-for-geometry</td>", findings)
 
 
 def test_inertia_table_compares_declared_and_geometry(report: str) -> None:
