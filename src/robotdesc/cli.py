@@ -8,6 +8,7 @@ Heavy modules are imported inside the commands so that `robotdesc --help` starts
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import logging
 import os
 import sys
@@ -52,8 +53,11 @@ def _run(ns: argparse.Namespace, verbose: int) -> int:
         _silence_stdout()
         return EXIT_OK
     except Exception as exc:  # anything else is a bug: say so, keep the traceback for -v
-        sys.stderr.write(f"robotdesc: internal error: {type(exc).__name__}: {exc}\n"
-                         f"This is a bug in robotdesc; please report it at {BUG_REPORT_URL} "
+        detail = str(exc)
+        detail = detail if len(detail) <= 500 else detail[:500] + f"... ({len(detail)} characters)"
+        sys.stderr.write(f"robotdesc: internal error: {type(exc).__name__}: {detail}\n"
+                         f"This is a bug in robotdesc, not a problem with your files; please "
+                         f"report it at {BUG_REPORT_URL} "
                          "with the command you ran"
                          + (".\n" if verbose else " (run with --verbose for the traceback).\n"))
         if verbose:
@@ -121,6 +125,14 @@ def build_parser() -> argparse.ArgumentParser:
     lint.add_argument("--jobs", "-j", type=int, default=1, metavar="N",
                       help="lint N targets at once in worker processes (0: one per CPU; "
                            "default: 1)")
+    lint.add_argument("--fix", action="store_true",
+                      help="write the safe fixes of findings into the xacro/URDF sources "
+                           "(where the value is a literal), then report what remains")
+    lint.add_argument("--diff", action="store_true",
+                      help="print the fixes as a unified diff and write nothing")
+    lint.add_argument("--unsafe-fixes", action="store_true",
+                      help="with --fix or --diff, apply the unsafe fixes too (inertia, "
+                           "limits, mesh scale)")
     lint.set_defaults(handler=_run_lint)
 
     expand = commands.add_parser(
@@ -180,20 +192,57 @@ def _run_lint(ns: argparse.Namespace) -> int:
         if discovery.directory:
             _write_discovery(sys.stderr, discovery)
         targets.extend(discovery.targets)
+    _check_lint_outputs(ns, targets)
+    if ns.fix or ns.diff:
+        from robotdesc.commands.lint_fix import run_fixes
+
+        if ns.diff:
+            return run_fixes(ns, targets, args, options, select, ignore)
+        run_fixes(ns, targets, args, options, select, ignore)
     outcomes = lint_targets(targets, args=args, expand_options=options, select=select,
                             ignore=ignore, jobs=ns.jobs)
     results = [o for o in outcomes if isinstance(o, LintResult)]
     failures += [o for o in outcomes if isinstance(o, LintFailure)]
     fail_on = {t.path: Severity.parse(ns.fail_on) if ns.fail_on else t.config.fail_on
                for t in targets}
-    results = _apply_baseline(ns, results)
+    inputs = _lint_inputs(ns, targets, results, failures, options)
+    results = _apply_baseline(ns, results, inputs)
     failed = any(r.failed(fail_on.get(r.target, Severity.INFO)) for r in results)
 
     if ns.format == "text":
         for failure in failures:
             _write_input_error(sys.stderr, failure.error, failure.target)
-    _write_report(ns, results, failures, min(fail_on.values(), default=Severity.INFO))
+    _write_report(ns, results, failures, min(fail_on.values(), default=Severity.INFO), inputs)
     return EXIT_INPUT if failures else EXIT_FINDINGS if failed else EXIT_OK
+
+
+def _check_lint_outputs(ns: argparse.Namespace, targets: list) -> None:
+    """Refuse, before any work, an output that is a target, the config or the baseline."""
+    from robotdesc.output import RunInputs, check_output
+
+    known = RunInputs().adding([ns.config, ns.baseline], "a file given to this run")
+    known = known.adding([t.path for t in targets], "a description being checked")
+    for path in (ns.output_file, ns.write_baseline):
+        if path:
+            check_output(path, known)
+
+
+def _lint_inputs(ns: argparse.Namespace, targets: list, results: list, failures: list,
+                 options: Any) -> Any:
+    """Every file the lint read (targets, includes, configs, package.xml, meshes, the
+    baseline): no output may replace one."""
+    from robotdesc.linting.inputs import run_inputs
+    from robotdesc.output import RunInputs
+
+    inputs = RunInputs().adding([ns.config, ns.baseline], "a file given to this run")
+    inputs = inputs.adding([t.path for t in targets] + [f.target for f in failures],
+                           "a description being checked")
+    for result in results:
+        inputs += result.inputs if result.inputs is not None else run_inputs(
+            result.target, config_path=result.config_path, expanded=result.expanded,
+            robot=result.robot, package_paths=options.package_paths,
+            package_map=options.package_map)
+    return inputs
 
 
 def _write_discovery(stream: Any, discovery: Any) -> None:
@@ -218,13 +267,13 @@ def _write_discovery(stream: Any, discovery: Any) -> None:
     stream.write(text + "\n")
 
 
-def _apply_baseline(ns: argparse.Namespace, results: list) -> list:
+def _apply_baseline(ns: argparse.Namespace, results: list, inputs: Any) -> list:
     """--write-baseline records the findings; --baseline (or the written one) hides them."""
     from robotdesc.linting.baseline import apply_baseline, read_baseline, render_baseline
 
     if ns.write_baseline:
         write_output(ns.write_baseline, render_baseline(results, ns.write_baseline)
-                          .encode("utf-8"))
+                     .encode("utf-8"), inputs)
         count = sum(len(r.diagnostics) for r in results)
         sys.stderr.write(f"robotdesc: wrote {count} finding(s) to {ns.write_baseline}\n")
     path = ns.write_baseline or ns.baseline
@@ -241,25 +290,23 @@ def _apply_baseline(ns: argparse.Namespace, results: list) -> list:
 
 
 def _run_expand(ns: argparse.Namespace) -> int:
-    from robotdesc.errors import UsageError
+    from robotdesc.linting.inputs import description_inputs, expansion_inputs
     from robotdesc.expansion import expand_file
     from robotdesc.model.write import urdf_text
-    from robotdesc.source import Span
+    from robotdesc.output import check_output
 
     single = single_input(ns, "expand")
     source = single.source
-    if ns.output and same_file(ns.output, source):
-        raise UsageError("refusing to overwrite the input file; choose another -o", Span(source))
+    known = description_inputs(source, single.config.path)
+    if ns.output:
+        check_output(ns.output, known)
     expanded = expand_file(source, single.args, options=single.options)
     urdf = urdf_text(expanded.xml, expanded.source)
     if not ns.output:
         sys.stdout.buffer.write(urdf)
         sys.stdout.flush()
         return EXIT_OK
-    if any(same_file(ns.output, read) for read in expanded.files_read):
-        raise UsageError("refusing to overwrite a file the expansion read; choose another -o",
-                         Span(ns.output))
-    write_output(ns.output, urdf)
+    write_output(ns.output, urdf, known + expansion_inputs(expanded))
     log.info("wrote %s (%d bytes)", ns.output, len(urdf))
     return EXIT_OK
 
@@ -293,6 +340,12 @@ def rule_help(rule: Any) -> str:
              f"Family: {rule.family}", f"Default severity: {rule.severity}"]
     if rule.needs:
         lines.append(f"Needs: {', '.join(sorted(rule.needs))}")
+    from robotdesc.rules.fixes import FIXABLE
+
+    if rule.code in FIXABLE:
+        applicability = FIXABLE[rule.code].value
+        lines.append(f"Fix: {applicability} (applied by `robotdesc lint --fix`"
+                     + (" --unsafe-fixes)" if applicability == "unsafe" else ")"))
     lines += ["", rule.doc or rule.summary, ""]
     fields = rule.option_fields()
     if fields:
@@ -322,6 +375,11 @@ def split_inputs(inputs: Sequence[str]) -> tuple[list[str], dict[str, str]]:
             if not name.replace("_", "").replace("-", "").isalnum():
                 raise UsageError(f"bad xacro argument '{item}' (expected name:=value)")
             args[name] = value
+        elif "=" in item and not os.path.exists(item) \
+                and item.partition("=")[0].replace("_", "").replace("-", "").isalnum():
+            name, _, value = item.partition("=")  # a xacro argument without its colon
+            raise UsageError(f"'{item}' is neither a file nor a xacro argument; xacro "
+                             f"arguments take a colon: {name}:={value}")
         else:
             paths.append(item)
     if not paths:
@@ -365,7 +423,10 @@ def single_input(ns: argparse.Namespace, verb: str) -> SingleInput:
         raise UsageError(f"{verb} takes one file, got {len(paths)}: {' '.join(paths)}")
     source = paths[0]
     config = load_config(ns.config) if ns.config else discover_config(source)
-    return SingleInput(source, args, config, expand_options(ns, config.packages))
+    options = expand_options(ns, config.packages)  # the config's default args may go unused
+    options = dataclasses.replace(options, unchecked_args=tuple(
+        name for name, _ in config.args if name not in args))
+    return SingleInput(source, args, config, options)
 
 
 def _selectors(values: Sequence[str], flag: str) -> list[str]:
@@ -396,7 +457,7 @@ def expand_options(ns: argparse.Namespace, package_map: Sequence[tuple[str, str]
 
 
 def _write_report(ns: argparse.Namespace, results: list, failures: list,
-                  fail_on: Any) -> None:
+                  fail_on: Any, inputs: Any = None) -> None:
     """Render the report in the chosen format to --output-file or stdout."""
     colour = not ns.output_file and _use_colour(sys.stdout)
     text = _render_report(ns.format, ns.statistics, results, failures, fail_on, colour)
@@ -405,7 +466,7 @@ def _write_report(ns: argparse.Namespace, results: list, failures: list,
 
         write_text(sys.stdout, results, failures, colour=_use_colour(sys.stdout))
     elif ns.output_file:
-        write_output(ns.output_file, text.encode("utf-8"))
+        write_output(ns.output_file, text.encode("utf-8"), inputs)
     else:
         sys.stdout.write(text)
 
@@ -450,16 +511,13 @@ def _write_input_error(stream: Any, error: Any, target: str | None) -> None:
     stream.write(render_failure(LintFailure(target or "robotdesc", error)))
 
 
-def write_output(path: str, data: bytes) -> None:
-    """Write `data` to `path` atomically; a failure is an input error naming the file."""
-    from robotdesc.atomic import write_atomically
-    from robotdesc.errors import InputError
-    from robotdesc.source import Span
+def write_output(path: str, data: bytes, inputs: Any = None) -> None:
+    """Write a command's output through `robotdesc.output.write_output` (which refuses to
+    replace any of `inputs`, the files the run read)."""
+    from robotdesc.output import NO_INPUTS
+    from robotdesc.output import write_output as write
 
-    try:
-        write_atomically(path, data)
-    except OSError as exc:
-        raise InputError(f"cannot write: {exc.strerror}", Span(path)) from None
+    write(path, data, inputs if inputs is not None else NO_INPUTS)
 
 
 def same_file(a: str, b: str) -> bool:

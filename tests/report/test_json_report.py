@@ -34,6 +34,7 @@ def test_json_report_fields(sample) -> None:
         "macro_stack": [{"file": str(root / "robot.urdf.xacro"), "line": 3},
                         {"file": str(root / "robot.urdf.xacro"), "line": 4}],
         "fix": '<limit lower="-1" upper="1" effort="1" velocity="1"/>',
+        "fix_applicability": None,
         "target": str(root / "robot.urdf.xacro"), "variant": {},
     }
     assert document["diagnostics"][1]["column"] is None

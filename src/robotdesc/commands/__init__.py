@@ -14,4 +14,5 @@ COMMAND_MODULES: tuple[str, ...] = (
     "robotdesc.commands.report",
     "robotdesc.commands.info",
     "robotdesc.commands.srdf",
+    "robotdesc.commands.server",
 )

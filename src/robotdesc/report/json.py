@@ -11,6 +11,7 @@ import os
 from typing import Any, Sequence
 
 from robotdesc.diagnostics import Diagnostic, Severity
+from robotdesc.rules.fixes import fix_applicability
 from robotdesc.source import Span
 
 SCHEMA_VERSION = 1
@@ -52,6 +53,7 @@ JSON_SCHEMA: dict[str, Any] = {
                            "message": {"type": "string"},
                            "element": {"type": "string"},
                            "fix": {"type": ["string", "null"]},
+                           "fix_applicability": {"enum": ["safe", "unsafe", None]},
                            **_POSITION},
         }},
         "failures": {"type": "array", "items": {
@@ -77,8 +79,15 @@ def diagnostic_dict(diagnostic: Diagnostic) -> dict[str, Any]:
         "element": diagnostic.element,
         "macro_stack": [_span_dict(site) for site in stack],
         "fix": diagnostic.fix,
+        "fix_applicability": _applicability(diagnostic),
         "target": diagnostic.target,
     }
+
+
+def _applicability(diagnostic: Diagnostic) -> str | None:
+    """"safe" or "unsafe" when `robotdesc lint --fix` can write the finding's fix, else None."""
+    found = fix_applicability(diagnostic.code, diagnostic.fix)
+    return found.value if found is not None else None
 
 
 def failure_dict(failure: Any) -> dict[str, Any]:

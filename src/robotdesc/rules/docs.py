@@ -9,6 +9,7 @@ import dataclasses
 import inspect
 import sys
 
+from robotdesc.rules.fixes import FIXABLE
 from robotdesc.rules.registry import Rule, all_rules
 
 #: Lines of a rule docstring that become section headings.
@@ -45,6 +46,9 @@ def _render_rule(rule_: Rule) -> str:
     facts = [f"Family: {rule_.family}", f"Default severity: {rule_.severity}"]
     if rule_.needs:
         facts.append("Needs: " + ", ".join(sorted(rule_.needs)))
+    if rule_.code in FIXABLE:
+        unsafe = " --unsafe-fixes" if FIXABLE[rule_.code].value == "unsafe" else ""
+        facts.append(f"Fix: {FIXABLE[rule_.code]} (`robotdesc lint --fix{unsafe}`)")
     lines = [f"## {rule_.code} {rule_.name}", "", " · ".join(facts), ""]
     for line in rule_.doc.splitlines():
         if line.strip() in SECTION_HEADINGS:

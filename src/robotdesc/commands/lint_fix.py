@@ -1,0 +1,47 @@
+"""The --fix, --diff and --unsafe-fixes options of `robotdesc lint` (not a subcommand of its
+own: cli.py's lint handler calls `run_fixes` before it reports)."""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import os
+import sys
+from typing import Any, Mapping, Sequence
+
+from robotdesc.linting.fix.engine import NOT_APPLICABLE, UNSAFE
+from robotdesc.linting.fix.run import fix_targets
+
+log = logging.getLogger(__name__)
+
+
+def run_fixes(ns: argparse.Namespace, targets: Sequence[Any], args: Mapping[str, str],
+              options: Any, select: Sequence[str] | None, ignore: Sequence[str]) -> int:
+    """Fix (or diff) the targets' findings; returns --diff's exit code (1: a diff)."""
+    run = fix_targets(targets, args=args, expand_options=options, select=select,
+                      ignore=ignore, unsafe=ns.unsafe_fixes, write=not ns.diff)
+    err = sys.stderr
+    for outcome in run.outcomes:
+        if outcome.status == NOT_APPLICABLE:
+            err.write(f"robotdesc: {_where(outcome.diagnostic)}: {outcome.diagnostic.code} "
+                      f"fix not applicable: {outcome.reason}\n")
+    hidden = sum(1 for o in run.outcomes if o.status == UNSAFE)
+    if ns.diff:
+        sys.stdout.write(run.diff)
+        count = sum(1 for o in run.outcomes if o.status == "fixed")
+        err.write(f"robotdesc: {count} fix(es) would be applied"
+                  + (f"; {hidden} more with --unsafe-fixes" if hidden else "") + "\n")
+        return 1 if run.diff else 0
+    for path in run.refused:
+        err.write(f"robotdesc: not writing {path}: it changed since it was read; run again\n")
+    err.write(f"robotdesc: fixed {run.fixed} finding(s) in {len(run.written)} file(s)"
+              + (f"; {hidden} more fixable with --unsafe-fixes" if hidden else "") + "\n")
+    return 0
+
+
+def _where(diagnostic: Any) -> str:
+    span = diagnostic.where.span if diagnostic.where else None
+    if span is None:
+        return diagnostic.target
+    path = os.path.relpath(span.path) if os.path.isabs(span.path) else span.path
+    return f"{path}:{span.line}" if span.line else path

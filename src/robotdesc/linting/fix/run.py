@@ -1,0 +1,112 @@
+"""`robotdesc lint --fix` / `--diff` over lint targets: lint with the model kept, plan the
+fixes, and (for --fix) write them, repeating while a pass still fixes something (a fixed mesh
+scale can change an inertia suggestion)."""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any, Mapping
+
+from robotdesc.errors import InputError
+from robotdesc.expansion import ExpandOptions
+from robotdesc.linting.driver import lint_file
+from robotdesc.linting.fix.engine import FixOutcome, FixPlan, plan_fixes, write_fixes
+from robotdesc.mesh.context import MeshContext
+
+log = logging.getLogger(__name__)
+
+#: --fix re-lints and fixes again at most this many times.
+MAX_PASSES = 4
+
+
+@dataclass(frozen=True)
+class FixRun:
+    """What a --fix or --diff run did.
+
+    Attributes:
+        diff: the unified diff of the first pass (--diff prints it).
+        outcomes: the fixable findings of the last pass and their fate.
+        fixed: how many findings were fixed over all passes.
+        written: the files written; refused: files not written, changed since read.
+    """
+
+    diff: str
+    outcomes: tuple[FixOutcome, ...]
+    fixed: int = 0
+    written: tuple[str, ...] = ()
+    refused: tuple[str, ...] = ()
+
+
+class MeshCase:
+    """M102's helper: the file on disk that a case-mismatched mesh reference names."""
+
+    def __init__(self, result: Any, config: Any, options: Any) -> None:
+        self.result, self.config, self.options = result, config, options
+        self._context = None
+
+    def case_candidate(self, element: str) -> str | None:
+        ref = _mesh_ref(self.result.robot, element)
+        if ref is None:
+            return None
+        if self._context is None:
+            self._context = MeshContext.for_file(
+                self.result.robot, self.result.target, self.config.meshes,
+                tuple(self.options.package_paths),
+                tuple(self.options.package_map) + tuple(self.config.packages))
+        problem = self._context.lookup(ref).resolution.problem
+        return problem.candidate if problem is not None else None
+
+
+def _mesh_ref(robot: Any, element: str) -> Any:
+    """The MeshRef named "link:NAME/visual[i]" or ".../collision[i]"."""
+    head, _, tail = element.partition("/")
+    link = next((l for l in robot.links if f"link:{l.name}" == head), None)
+    kind, _, rest = tail.partition("[")
+    if link is None or kind not in ("visual", "collision") or not rest.endswith("]"):
+        return None
+    shapes = link.visuals if kind == "visual" else link.collisions
+    index = int(rest[:-1])
+    return shapes[index].geometry if index < len(shapes) else None
+
+
+def fix_targets(targets: Sequence[Any], *, args: Mapping[str, str] | None = None,
+                expand_options: Any = None, select: Sequence[str] | None = None,
+                ignore: Sequence[str] = (), unsafe: bool = False, write: bool = True
+                ) -> FixRun:
+    """Plan (and with `write`, apply) the fixes of every target's findings."""
+    first_diff, fixed, written, refused = None, 0, [], []
+    plan = FixPlan()
+    for number in range(MAX_PASSES if write else 1):
+        plan = _plan(targets, args, expand_options, select, ignore, unsafe)
+        if first_diff is None:
+            first_diff = plan.diff()
+        if not write or not plan.files:
+            break
+        done, changed = write_fixes(plan)
+        written += [p for p in done if p not in written]
+        refused += changed
+        fixed += len(plan.fixed)
+        log.info("fix pass %d: %d finding(s) fixed in %d file(s)", number + 1,
+                 len(plan.fixed), len(done))
+        if changed:
+            break
+    return FixRun(first_diff or "", plan.outcomes, fixed, tuple(written), tuple(refused))
+
+
+def _plan(targets: Sequence[Any], args: Mapping[str, str] | None, expand_options: Any,
+          select: Sequence[str] | None, ignore: Sequence[str], unsafe: bool) -> FixPlan:
+    options = expand_options or ExpandOptions()
+    results, helpers = [], {}
+    for target in targets:
+        try:
+            result = lint_file(target.path, target.config,
+                               args={**dict(target.args), **dict(args or {})},
+                               expand_options=options, select=select, ignore=ignore)
+        except InputError as exc:
+            log.info("not fixing %s: %s", target.path, exc)
+            continue
+        results.append(result)
+        helpers[result.target] = MeshCase(result, target.config, options)
+    return plan_fixes(results, unsafe=unsafe, helpers=helpers)

@@ -1,0 +1,192 @@
+"""The editor session: which descriptions a file belongs to, their findings per file, and
+the source edits of a finding's fix. No LSP here (see lsp.py)."""
+
+from __future__ import annotations
+
+import logging
+import os
+from collections.abc import Iterable
+from dataclasses import dataclass
+from typing import Any
+
+from robotdesc.diagnostics import Diagnostic
+from robotdesc.errors import InputError
+from robotdesc.expansion import ExpandOptions
+from robotdesc.expansion.packages import enclosing_package
+from robotdesc.linting.driver import lint_file
+from robotdesc.linting.fix.engine import FIXED, FixOutcome, plan_fixes
+from robotdesc.linting.fix.run import MeshCase
+from robotdesc.linting.targets import LintTarget, discover_targets
+from robotdesc.rules.fixes import Applicability
+
+log = logging.getLogger(__name__)
+
+SUFFIXES = (".urdf", ".xacro")
+
+
+@dataclass(frozen=True)
+class TextEdit:
+    """Replace the text between two (0-based line, UTF-16 column) positions of a file."""
+
+    path: str
+    start: tuple[int, int]
+    end: tuple[int, int]
+    text: str
+
+
+@dataclass(frozen=True)
+class FixAction:
+    """One finding's fix, as the editor applies it."""
+
+    title: str
+    diagnostic: Diagnostic
+    safe: bool
+    edits: tuple[TextEdit, ...]
+
+
+class Session:
+    """The descriptions linted so far, their results, and what was published where."""
+
+    def __init__(self, expand_options: Any = None) -> None:
+        self.expand_options = expand_options
+        self.results: dict[tuple[str, tuple], Any] = {}  # (target, variant) -> LintResult
+        self.targets: dict[tuple[str, tuple], LintTarget] = {}
+        self.failures: dict[tuple[str, tuple], InputError] = {}
+
+    # -- linting ------------------------------------------------------------------------
+
+    def targets_for(self, path: str) -> list[LintTarget]:
+        """The top-level descriptions `path` takes part in: those of its package (or its
+        folder) whose expansion read it, else the file itself when it is one."""
+        path = os.path.abspath(path)
+        known = [self.targets[key] for key, result in self.results.items()
+                 if path in _sources(result)]
+        if known:
+            return known
+        package = enclosing_package(path)
+        folder = str(package[1]) if package else os.path.dirname(path)
+        try:
+            candidates = list(discover_targets(folder).targets)
+        except InputError:
+            candidates = []
+        if any(t.path == path for t in candidates):
+            return [t for t in candidates if t.path == path]
+        return candidates
+
+    def lint(self, path: str) -> dict[str, list[Diagnostic]]:
+        """Lint the descriptions `path` belongs to; findings per file (every file that had
+        or has one in them, so that the caller can clear stale ones)."""
+        path = os.path.abspath(path)
+        touched: set[str] = {path}
+        for target in self.targets_for(path):
+            key = (target.path, tuple(target.variant))
+            old = self.results.get(key)
+            if old is not None:
+                touched.update(_finding_paths(old.diagnostics))
+            try:
+                result = lint_file(target.path, target.config, args=dict(target.args),
+                                   expand_options=self.expand_options)
+            except InputError as error:
+                self.failures[key] = error
+                self.results.pop(key, None)
+                continue
+            self.failures.pop(key, None)
+            self.targets[key], self.results[key] = target, result
+            touched.update(_finding_paths(result.diagnostics))
+        return {file: self.findings(file) for file in touched}
+
+    def findings(self, path: str) -> list[Diagnostic]:
+        """The findings of every linted description at `path`, each once (matrix variants
+        repeat them)."""
+        seen, found = set(), []
+        for result in self.results.values():
+            for diagnostic in result.diagnostics:
+                span = diagnostic.where.span if diagnostic.where else None
+                key = (diagnostic.code, span.line if span else 0, diagnostic.message)
+                if span is not None and span.path == path and key not in seen:
+                    seen.add(key)
+                    found.append(diagnostic)
+        return found
+
+    def errors(self, path: str) -> list[InputError]:
+        """Input errors (expansion or parse) located in `path`."""
+        return [e for e in self.failures.values()
+                if getattr(e, "span", None) is not None and e.span.path == path]
+
+    # -- fixes --------------------------------------------------------------------------
+
+    def fix_actions(self, path: str, lines: tuple[int, int], unsafe: bool = True
+                    ) -> list[FixAction]:
+        """The fixes of the findings at `path` whose line is within `lines` (1-based)."""
+        wanted = [d for d in self.findings(path)
+                  if lines[0] <= d.where.span.line <= lines[1]]
+        if not wanted:
+            return []
+        actions = []
+        for outcome in self._outcomes(unsafe):
+            diagnostic = outcome.diagnostic
+            if outcome.status == FIXED and any(_same(diagnostic, w) for w in wanted) \
+                    and not any(_same(diagnostic, a.diagnostic) for a in actions):
+                actions.append(_action(outcome))
+        return actions
+
+    def fix_all(self, path: str) -> list[FixAction]:
+        """The safe fixes of every finding of the descriptions `path` belongs to."""
+        keys = {(t.path, tuple(t.variant)) for t in self.targets_for(path)}
+        return [_action(o) for o in self._outcomes(False, keys) if o.status == FIXED]
+
+    def _outcomes(self, unsafe: bool, keys: Iterable | None = None) -> list[FixOutcome]:
+        chosen = [k for k in self.results if keys is None or k in keys]
+        results = [self.results[k] for k in chosen]
+        helpers = {self.results[k].target: MeshCase(self.results[k], self.targets[k].config,
+                                                    self._options()) for k in chosen}
+        return list(plan_fixes(results, unsafe=unsafe, helpers=helpers).outcomes)
+
+    def _options(self) -> Any:
+        return self.expand_options or ExpandOptions()
+
+
+def _sources(result: Any) -> set[str]:
+    expanded = result.expanded
+    files = {result.target}
+    if expanded is not None:
+        files.update(expanded.files)
+        files.update(expanded.files_read)
+    return files
+
+
+def _finding_paths(diagnostics: Iterable[Diagnostic]) -> set[str]:
+    return {d.where.span.path for d in diagnostics if d.where is not None}
+
+
+def _same(a: Diagnostic, b: Diagnostic) -> bool:
+    return (a.code, a.element, a.message) == (b.code, b.element, b.message)
+
+
+def _action(outcome: FixOutcome) -> FixAction:
+    diagnostic = outcome.diagnostic
+    safe = outcome.applicability is Applicability.SAFE
+    title = f"Fix {diagnostic.code} ({diagnostic.name})" + ("" if safe else " [unsafe]")
+    texts: dict[str, str] = {}
+    edits = []
+    for edit in outcome.edits:
+        if edit.path not in texts:
+            with open(edit.path, "rb") as handle:
+                texts[edit.path] = handle.read().decode("utf-8")
+        text = texts[edit.path]
+        edits.append(TextEdit(edit.path, position(text, edit.start), position(text, edit.end),
+                              edit.text))
+    return FixAction(title, diagnostic, safe, tuple(edits))
+
+
+def position(text: str, offset: int) -> tuple[int, int]:
+    """The LSP position (0-based line, UTF-16 code units) of a string offset."""
+    line, begin, index = 0, 0, 0
+    while True:
+        found = min((i for i in (text.find("\r", index, offset), text.find("\n", index, offset))
+                     if i >= 0), default=-1)
+        if found < 0:
+            break
+        step = 2 if text.startswith("\r\n", found) and found + 1 < offset else 1
+        line, begin, index = line + 1, found + step, found + step
+    return line, len(text[begin:offset].encode("utf-16-le")) // 2
