@@ -17,6 +17,7 @@ from robotdesc.cache_dir import cache_root, read_regular_file
 from robotdesc.diagnostics import Finding
 from robotdesc.expansion import ExpandOptions, expand_file
 from robotdesc.linting import rule_cache
+from robotdesc.mesh import cache as mesh_cache
 from robotdesc.mesh.cache import MeshCache
 
 TOP = """<?xml version="1.0"?>
@@ -124,7 +125,7 @@ def test_a_swapped_mesh_summary_is_not_used(package, tmp_path):
     for path in (small, large):
         analyze_mesh_file(path, (1.0, 1.0, 1.0), cache=meshes)
     assert all(meshes.get(key) is not None for key in keys)
-    entries = [tmp_path / "cache" / "meshes-v1" / k[:2] / f"{k}.json" for k in keys]
+    entries = [tmp_path / "cache" / f"meshes-v{mesh_cache.CACHE_VERSION}" / k[:2] / f"{k}.json" for k in keys]
     first, second = (p.read_bytes() for p in entries)
     entries[0].write_bytes(second)
     entries[1].write_bytes(first)

@@ -51,7 +51,19 @@ def test_known_mesh_problems() -> None:
     assert codes("romeo_laas_small.urdf")["M101"] == 0  # file:// meshes are P102's
 
 
-@pytest.mark.parametrize("name", ["ur5_robot.urdf", "solo12.urdf", "go1.urdf", "z1.urdf",
+def test_go1_base_tensor_is_singular_and_its_trunk_mesh_is_read() -> None:
+    """go1's `base` (a root link of 1e-6 kg) has a rank-1 tensor MuJoCo refuses (I103);
+    its 28 MB trunk.dae has a float array over libxml2's text limit and is read (no M107)."""
+    found = codes("go1.urdf")
+    assert found["I103"] == 1 and found["M107"] == 0
+
+
+def test_anymal_foot_is_read_and_its_broken_material_is_m116() -> None:
+    found = codes("anymal-kinova.urdf")  # ANYmal B's four feet use anymal_foot.dae
+    assert found["M107"] == 0 and found["M116"] == 1
+
+
+@pytest.mark.parametrize("name", ["ur5_robot.urdf", "solo12.urdf", "z1.urdf",
                                   "kinova.urdf", "talos_reduced.urdf"])
 def test_robots_free_of_inertia_errors(name: str) -> None:
     errors = [d for d in lint(name) if d.code.startswith("I") and d.severity >= Severity.ERROR]

@@ -45,13 +45,17 @@ def write_ascii_stl(path: Path, triangles: np.ndarray) -> Path:
 
 
 def write_collada(path: Path, triangles: np.ndarray, unit_meter: float | None = None,
-                  matrix: np.ndarray | None = None, instantiate: bool = True) -> Path:
+                  matrix: np.ndarray | None = None, instantiate: bool = True,
+                  material: str | None = None, image: str | None = None) -> Path:
     """Write a one-geometry COLLADA 1.4.1 file (indexed as a soup) placed by one node.
 
     Args:
         unit_meter: value of `<unit meter>`; None writes no `<unit>`.
         matrix: the node's 4x4 transform (identity when None).
         instantiate: place the geometry in the scene (False: define it only).
+        material: bind the triangles to this material target (e.g. "#m"), which the file
+            does not define (a broken reference).
+        image: declare a texture image with this file path.
     """
     flat = np.asarray(triangles, dtype=float).reshape(-1, 3)
     positions = " ".join(repr(float(v)) for v in flat.reshape(-1))
@@ -59,10 +63,16 @@ def write_collada(path: Path, triangles: np.ndarray, unit_meter: float | None = 
     node_matrix = np.identity(4) if matrix is None else np.asarray(matrix, dtype=float)
     node_text = " ".join(repr(float(v)) for v in node_matrix.reshape(-1))
     unit = "" if unit_meter is None else f'<unit name="u" meter="{unit_meter}"/>'
-    instance = '<instance_geometry url="#g"/>' if instantiate else ""
+    binding = ("" if material is None else '<bind_material><technique_common>'
+               f'<instance_material symbol="mat" target="{material}"/>'
+               '</technique_common></bind_material>')
+    instance = f'<instance_geometry url="#g">{binding}</instance_geometry>' if instantiate else ""
+    images = ("" if image is None else
+              f'<library_images><image id="tex"><init_from>{image}</init_from></image>'
+              '</library_images>')
     path.write_text(f"""<?xml version="1.0" encoding="utf-8"?>
 <COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
-  <asset>{unit}<up_axis>Z_UP</up_axis></asset>
+  <asset>{unit}<up_axis>Z_UP</up_axis></asset>{images}
   <library_geometries>
     <geometry id="g" name="g"><mesh>
       <source id="g-pos">
@@ -72,7 +82,7 @@ def write_collada(path: Path, triangles: np.ndarray, unit_meter: float | None = 
         </accessor></technique_common>
       </source>
       <vertices id="g-vtx"><input semantic="POSITION" source="#g-pos"/></vertices>
-      <triangles count="{len(triangles)}">
+      <triangles count="{len(triangles)}"{' material="mat"' if material else ''}>
         <input semantic="VERTEX" source="#g-vtx" offset="0"/>
         <p>{indices}</p>
       </triangles>

@@ -4,7 +4,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from robotdesc.mesh.health import hole_caps, merge_vertices, mesh_health, topology
+from robotdesc.mesh.health import (
+    hole_caps,
+    merge_tolerance,
+    merge_vertices,
+    mesh_health,
+    topology,
+)
 from robotdesc.mesh.mass import volume_integrals
 
 from .builders import box_triangles
@@ -60,3 +66,25 @@ def test_hole_caps_close_a_planar_hole_exactly():
     closed = np.concatenate([soup, caps])
     assert mesh_health(closed).encloses_volume
     assert abs(volume_integrals(closed).volume - 6.0) < 1e-12
+
+
+def test_crack_narrower_than_the_tolerance_is_closed():
+    """An exporter's rounding: one face's corners a tenth of a nanometre off its
+    neighbours'. Merged within a millionth of the size, the box is closed."""
+    soup = box_triangles()
+    soup[4] += 1e-10
+    health = mesh_health(soup)
+    assert health.watertight and health.encloses_volume and health.vertices == 8
+
+
+def test_gap_wider_than_the_tolerance_stays_open():
+    soup = box_triangles()
+    soup[4] += 1e-3
+    health = mesh_health(soup)
+    assert not health.watertight and health.boundary_edges > 0
+
+
+def test_merge_tolerance_is_relative_to_the_mesh_size():
+    small, large = box_triangles((0.01, 0.01, 0.01)), box_triangles((10.0, 10.0, 10.0))
+    assert merge_tolerance(small.reshape(-1, 3)) < merge_tolerance(large.reshape(-1, 3))
+    assert merge_tolerance(large.reshape(-1, 3)) < 1e-4

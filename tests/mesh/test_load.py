@@ -162,3 +162,42 @@ def test_multi_body_collada_from_example_robot_data(robots_dir):
     low, high = scene.bounds
     np.testing.assert_allclose(mesh.triangles.reshape(-1, 3).min(axis=0), low, atol=1e-9)
     np.testing.assert_allclose(mesh.triangles.reshape(-1, 3).max(axis=0), high, atol=1e-9)
+
+
+def test_collada_with_a_broken_material_keeps_its_geometry(tmp_path, box_soup):
+    """pycollada drops a node bound to a material it cannot find; assimp (RViz) draws the
+    geometry: robotdesc reads it and records the broken reference instead."""
+    path = write_collada(tmp_path / "m.dae", box_soup, material="#nowhere-material")
+    mesh = load_mesh(path)
+    assert len(mesh.triangles) == len(box_soup)
+    assert any("nowhere-material" in text for text in mesh.broken_references)
+
+
+def test_collada_with_a_missing_texture_image(tmp_path, box_soup):
+    path = write_collada(tmp_path / "t.dae", box_soup, image="skin.png")
+    assert load_mesh(path).broken_references == ("texture image 'skin.png' does not exist",)
+    (tmp_path / "skin.png").write_bytes(b"")
+    assert load_mesh(path).broken_references == ()
+
+
+def test_sound_collada_has_no_broken_references(tmp_path, box_soup):
+    assert load_mesh(write_collada(tmp_path / "ok.dae", box_soup)).broken_references == ()
+
+
+def test_anymal_foot_reads_as_assimp_does(robots_dir):
+    """example-robot-data's anymal_foot.dae binds a material whose effect samples an
+    undefined surface: assimp loads its 4,604 faces, and so does robotdesc."""
+    path = robots_dir / "anymal_b_simple_description/meshes/foot/anymal_foot.dae"
+    mesh = load_mesh(path)
+    assert len(mesh.triangles) == 4604
+    assert any("carbon_fibre_001" in text for text in mesh.broken_references)
+
+
+def test_collada_with_a_text_node_over_libxml2s_limit_is_read(tmp_path, box_soup):
+    """go1's and b1's trunk.dae hold float arrays over 10 MB: large, not malformed."""
+    path = write_collada(tmp_path / "big.dae", box_soup)
+    head = f'count="{box_soup.size}">'
+    text = path.read_text()
+    assert head in text
+    path.write_text(text.replace(head, head + " " * 10_000_001, 1))
+    assert len(load_mesh(path).triangles) == len(box_soup)

@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mesh.builders import box_triangles, write_binary_stl
+from mesh.builders import box_triangles, write_binary_stl, write_collada
 from robotdesc.config import MeshSettings
 from robotdesc.mesh.context import MeshContext
 from robotdesc.model.parse import parse_urdf
@@ -66,6 +66,10 @@ def write_meshes(package: Path) -> None:
     degenerate = np.concatenate([box, box[:1, [0, 0, 1]]])
     write_binary_stl(meshes / "degenerate.stl", degenerate)
     write_binary_stl(meshes / "fine.stl", cylinder_triangles())
+    cracked = box.copy()
+    cracked[4] += 1e-7  # one face 0.1 um off its neighbours (float32 keeps it): rounding
+    write_binary_stl(meshes / "cracked.stl", cracked)
+    write_collada(meshes / "broken_material.dae", box, material="#nowhere-material")
     write_binary_stl(package.parent / "outside.stl", box)
 
 

@@ -34,7 +34,7 @@ from robotdesc.mesh.records import MassMethod, MeshHealth, MeshSummary
 
 log = logging.getLogger(__name__)
 
-CACHE_VERSION = 1
+CACHE_VERSION = 2
 #: The largest entry read: a summary or an index record is a few kilobytes.
 MAX_ENTRY_BYTES = 1 << 20
 #: Errors that depend on the limits in force, not on the file alone: never cached.
@@ -142,6 +142,7 @@ def summary_to_json(summary: MeshSummary) -> dict[str, Any]:
         "unit_meter": summary.unit_meter,
         "bodies": summary.bodies,
         "notes": list(summary.notes),
+        "broken_references": list(summary.broken_references),
     }
 
 
@@ -165,6 +166,7 @@ def summary_from_json(data: dict[str, Any]) -> MeshSummary:
         unit_meter=float(data["unit_meter"]),
         bodies=int(data["bodies"]),
         notes=tuple(str(n) for n in data["notes"]),
+        broken_references=tuple(str(n) for n in data.get("broken_references", ())),
     )
 
 

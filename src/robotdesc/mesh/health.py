@@ -3,6 +3,10 @@
 Vertices are merged by exact coordinate equality (as MeshLab does when it imports an STL),
 then every edge is counted: a closed (watertight) surface uses each undirected edge exactly
 twice, and a consistently wound one uses each directed edge once, in opposite directions.
+When that leaves holes, vertices on their rims closer than `MERGE_FRACTION` of the mesh's
+bounding-box diagonal (or a few float32 steps of its coordinates) are merged too and the
+edges counted again: an exporter's rounding opens cracks a nanometre wide that no consumer
+sees (MeshLab's "merge close vertices", trimesh's `merge_vertices`).
 """
 
 from __future__ import annotations
@@ -14,10 +18,16 @@ import numpy as np
 from robotdesc.mesh.mass import bounds
 from robotdesc.mesh.records import MeshHealth
 
-__all__ = ["MeshHealth", "Topology", "hole_caps", "merge_vertices", "mesh_health", "topology"]
+__all__ = ["MeshHealth", "Topology", "hole_caps", "merge_tolerance", "merge_vertices",
+           "mesh_health",
+           "topology"]
 
 #: A face whose area is below this fraction of the squared bounding-box diagonal is degenerate.
 DEGENERATE_AREA_FRACTION = 1e-14
+#: Rim vertices of holes closer than this fraction of the bounding-box diagonal are one vertex.
+MERGE_FRACTION = 1e-6
+#: ... or closer than this many float32 steps at the mesh's largest coordinate.
+MERGE_FLOAT32_STEPS = 4
 
 
 @dataclass(frozen=True, eq=False)
@@ -46,12 +56,62 @@ class Topology:
 
 
 def topology(triangles: np.ndarray) -> Topology:
-    """Merge vertices and count each undirected edge's uses in each direction.
+    """Merge vertices and count each undirected edge's uses in each direction; when the
+    surface has holes, merge their rim vertices within the tolerance and count again.
+    """
+    vertices, faces = merge_vertices(triangles)
+    topo = _count_edges(vertices, faces)
+    if not np.any(topo.edge_uses == 1):
+        return topo
+    merged = _merge_close_rims(topo, merge_tolerance(vertices))
+    return topo if merged is None else _count_edges(*merged)
+
+
+def merge_tolerance(vertices: np.ndarray) -> float:
+    """Distance (in the mesh's units) within which two rim vertices are one: `MERGE_FRACTION`
+    of the bounding-box diagonal, or `MERGE_FLOAT32_STEPS` float32 steps at the largest
+    coordinate, whichever is larger."""
+    if len(vertices) == 0:
+        return 0.0
+    diagonal = float(np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0)))
+    largest = float(np.abs(vertices).max())
+    step = float(np.spacing(np.float32(largest)))
+    return max(MERGE_FRACTION * diagonal, MERGE_FLOAT32_STEPS * step)
+
+
+def _merge_close_rims(topo: Topology, tolerance: float
+                      ) -> tuple[np.ndarray, np.ndarray] | None:
+    """(vertices, faces) with rim vertices within `tolerance` of each other merged, or None
+    when no two are that close."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    single = topo.edge_uses == 1
+    rim = np.unique(np.concatenate((topo.edge_low[single], topo.edge_high[single])))
+    if tolerance <= 0 or len(rim) < 2:
+        return None
+    pairs = cKDTree(topo.vertices[rim]).query_pairs(tolerance, output_type="ndarray")
+    if len(pairs) == 0:
+        return None
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])),
+                       shape=(len(rim), len(rim)))
+    _, labels = connected_components(graph, directed=False)
+    first = np.full(labels.max() + 1, len(rim))
+    np.minimum.at(first, labels, np.arange(len(rim)))
+    representative = np.arange(len(topo.vertices))
+    representative[rim] = rim[first[labels]]
+    kept, remap = np.unique(representative, return_inverse=True)
+    return topo.vertices[kept], remap[topo.faces]
+
+
+def _count_edges(vertices: np.ndarray, faces: np.ndarray) -> Topology:
+    """Count each undirected edge's uses in each direction (faces with a repeated vertex
+    left out).
 
     Directed edges are sorted once by a key that holds the undirected edge and, in its lowest
     bit, the direction; a plain sort is several times faster than the argsort it replaces.
     """
-    vertices, faces = merge_vertices(triangles)
     repeated = _repeated(faces)
     good = faces[~repeated] if repeated.any() else faces
     heads = good.reshape(-1)

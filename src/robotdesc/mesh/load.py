@@ -8,8 +8,10 @@ Whatever goes wrong becomes a `MeshError` naming the file, never a crash.
 
 from __future__ import annotations
 
+import io
 import logging
 import os
+import re
 import stat
 import warnings
 from collections.abc import Iterator, Sequence
@@ -17,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from robotdesc.errors import XmlSyntaxError
 from robotdesc.mesh.stl import read_stl
 from robotdesc.mesh.validate import (
     DEFAULT_LIMITS,
@@ -29,6 +32,11 @@ from robotdesc.mesh.validate import (
     validate_scale,
     validate_triangles,
 )
+from robotdesc.xml_input import XmlOptions, parse_xml
+
+_COLLADA = XmlOptions(what="COLLADA file")
+#: How the guarded parser's message for a text node over libxml2's limit begins.
+_LONG_TEXT = "a text or attribute value longer than"
 
 log = logging.getLogger(__name__)
 
@@ -36,6 +44,8 @@ log = logging.getLogger(__name__)
 FORMATS = {"stl": "stl", "dae": "collada", "obj": "trimesh", "ply": "trimesh",
            "glb": "trimesh", "gltf": "trimesh"}
 _TEXT_FORMATS = {"dae", "obj", "gltf"}
+#: A COLLADA `<bind_material>` (its material bindings only; no geometry is in it).
+_BIND_MATERIAL = re.compile(rb"<bind_material\b(?:[^>]*/>|.*?</bind_material\s*>)", re.S)
 
 
 @dataclass(frozen=True, eq=False)
@@ -52,6 +62,8 @@ class LoadedMesh:
         scale: the URDF scale applied.
         mirrored: the scale has a negative determinant; face winding was reversed so that
             outward normals stay outward.
+        broken_references: material, effect or texture references of a COLLADA file that do
+            not resolve; the geometry was read without them (as assimp, RViz's loader, does).
     """
 
     triangles: np.ndarray
@@ -61,6 +73,7 @@ class LoadedMesh:
     unit_meter: float = 1.0
     scale: tuple[float, float, float] = (1.0, 1.0, 1.0)
     mirrored: bool = False
+    broken_references: tuple[str, ...] = ()
 
 
 def load_mesh(path: str | os.PathLike[str], scale: Sequence[float] = (1.0, 1.0, 1.0),
@@ -85,16 +98,21 @@ def load_mesh(path: str | os.PathLike[str], scale: Sequence[float] = (1.0, 1.0, 
     _check_regular_file(name)
     extension = os.path.splitext(name)[1].lower().lstrip(".")
     reader = FORMATS.get(extension)
+    if not extension:
+        raise MeshError(MeshErrorKind.UNSUPPORTED,
+                        "has no file extension, so its format is unknown (supported: "
+                        f"{', '.join('.' + e for e in sorted(FORMATS))})", name)
     if reader is None:
         raise MeshError(MeshErrorKind.UNSUPPORTED,
                         f"format '.{extension}' is not supported (supported: "
                         f"{', '.join('.' + e for e in sorted(FORMATS))})", name)
+    broken: tuple[str, ...] = ()
     if reader == "stl":
         triangles, bodies, unit = read_stl(name, limits), 1, 1.0
     else:
         _check_head(name, limits, text=extension in _TEXT_FORMATS)
         if reader == "collada":
-            triangles, bodies, unit = _read_collada(name, limits)
+            triangles, bodies, unit, broken = _read_collada(name, limits)
         else:
             triangles, bodies, unit = _read_with_trimesh(name, extension, limits)
     factor = np.asarray(factors) * unit
@@ -103,7 +121,7 @@ def load_mesh(path: str | os.PathLike[str], scale: Sequence[float] = (1.0, 1.0, 
     if mirrored:
         soup = soup[:, ::-1].copy()
     validate_triangles(soup, name, limits)
-    return LoadedMesh(soup, name, extension, bodies, unit, factors, mirrored)
+    return LoadedMesh(soup, name, extension, bodies, unit, factors, mirrored, broken)
 
 
 def _check_regular_file(name: str) -> None:
@@ -128,16 +146,38 @@ def _check_head(name: str, limits: MeshLimits, text: bool) -> None:
     check_file_head(head, size, name, limits, text=text)
 
 
-def _read_collada(name: str, limits: MeshLimits) -> tuple[np.ndarray, int, float]:
+def _read_collada(name: str, limits: MeshLimits
+                  ) -> tuple[np.ndarray, int, float, tuple[str, ...]]:
     """Triangles of every geometry instance in the scene, node transforms applied, in the
-    document's units; plus the body count and the `<unit meter>` factor."""
-    import collada  # lazy: pycollada is only needed for .dae files
+    document's units; plus the body count, the `<unit meter>` factor and the broken
+    material/texture references.
 
+    pycollada drops a whole scene node whose `<bind_material>` names a material it cannot
+    build (a missing effect or texture surface); assimp draws the geometry anyway. Such a
+    file is read a second time without its material bindings, and the broken references
+    are returned instead of the geometry being lost.
+    """
+    data = _read_bytes(name)
+    try:  # the guarded parser first: no DOCTYPE or entity, depth and size limits
+        parse_xml(data, name, _COLLADA)
+    except XmlSyntaxError as error:
+        if error.message.startswith(_LONG_TEXT):
+            # a float_array over libxml2's 10 MB text limit is a large mesh, not a broken
+            # one (assimp reads it); the DOCTYPE was refused before libxml2 ran, and the
+            # file's size was checked against `max_text_bytes`
+            log.debug("%s: %s; read by pycollada", name, error.message)
+        else:
+            where = f"line {error.span.line}: " if error.span and error.span.line else ""
+            raise MeshError(MeshErrorKind.MALFORMED,
+                            f"COLLADA could not be read: {where}{error.message}",
+                            name) from None
     try:
         with warnings.catch_warnings():  # pycollada still builds numpy.matrix objects
             warnings.simplefilter("ignore", PendingDeprecationWarning)
-            document = collada.Collada(name, ignore=[collada.common.DaeUnsupportedError,
-                                                     collada.common.DaeBrokenRefError])
+            document = _collada_document(data)
+            broken = _broken_references(document, name)
+            if broken:
+                document = _collada_document(_BIND_MATERIAL.sub(b"", data))
             unit = document.assetInfo.unitmeter if document.assetInfo else None
             parts = list(_collada_parts(document, name, limits))
     except MeshError:
@@ -155,7 +195,32 @@ def _read_collada(name: str, limits: MeshLimits) -> tuple[np.ndarray, int, float
                   "viewer that follows the scene (RViz, Gazebo) draws nothing"
                   if defined and document.scene is not None else "")
         raise MeshError(MeshErrorKind.EMPTY, "COLLADA file contains no triangles" + detail, name)
-    return np.concatenate([p for _, p in parts]), len({body for body, _ in parts}), unit_meter
+    return (np.concatenate([p for _, p in parts]), len({body for body, _ in parts}),
+            unit_meter, broken)
+
+
+def _collada_document(data: bytes):
+    """A pycollada document; unsupported features and broken references are recorded in
+    its `errors`, not raised."""
+    import collada  # lazy: pycollada is only needed for .dae files
+
+    return collada.Collada(io.BytesIO(data), ignore=[collada.common.DaeUnsupportedError,
+                                                      collada.common.DaeBrokenRefError])
+
+
+def _broken_references(document, name: str) -> tuple[str, ...]:
+    """pycollada's broken references, and texture images whose file does not exist."""
+    import collada
+
+    found = [str(error).removeprefix("DaeBrokenRefError: ") for error in document.errors
+             if isinstance(error, collada.common.DaeBrokenRefError)]
+    folder = os.path.dirname(name)
+    for image in document.images:
+        path = str(getattr(image, "path", "") or "")
+        if path and "://" not in path and not os.path.isabs(path) \
+                and not os.path.exists(os.path.join(folder, path)):
+            found.append(f"texture image '{path}' does not exist")
+    return tuple(dict.fromkeys(found))
 
 
 def _collada_parts(document, name: str, limits: MeshLimits) -> Iterator[tuple[int, np.ndarray]]:
@@ -189,12 +254,34 @@ def _collada_parts(document, name: str, limits: MeshLimits) -> Iterator[tuple[in
             yield body, soup[:, ::-1] if inside_out else soup
 
 
+def _read_bytes(name: str) -> bytes:
+    try:
+        with open(name, "rb") as handle:
+            return handle.read()
+    except OSError as error:
+        raise MeshError(MeshErrorKind.UNREADABLE,
+                        f"cannot be read: {error.strerror}", name) from error
+
+
+def _text_as_utf8(name: str) -> str | io.BytesIO:
+    """An OBJ that is not UTF-8 (a Latin-1 comment or name), transcoded so that trimesh
+    never guesses its encoding; UTF-8 files are read from their path as usual."""
+    data = _read_bytes(name)
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError:
+        log.debug("%s is not UTF-8; read as Latin-1", name)
+        return io.BytesIO(data.decode("latin-1").encode("utf-8"))
+    return name
+
+
 def _read_with_trimesh(name: str, extension: str,
                        limits: MeshLimits) -> tuple[np.ndarray, int, float]:
     import trimesh  # lazy: heavy import, only for formats the numpy readers do not cover
 
     try:
-        scene = trimesh.load_scene(name, file_type=extension, process=False)
+        scene = trimesh.load_scene(_text_as_utf8(name) if extension == "obj" else name,
+                                   file_type=extension, process=False)
         pieces = []
         for node in scene.graph.nodes_geometry:
             transform, geometry_name = scene.graph[node]

@@ -80,6 +80,8 @@ class MeshSummary:
         unit_meter: the COLLADA unit factor applied (1.0 for other formats).
         bodies: number of geometries combined from the file.
         notes: the fallbacks taken, in a user's words.
+        broken_references: material or texture references of the file that do not resolve
+            (the geometry was read without them).
     """
 
     properties: MassProperties | None
@@ -90,6 +92,7 @@ class MeshSummary:
     unit_meter: float = 1.0
     bodies: int = 1
     notes: tuple[str, ...] = ()
+    broken_references: tuple[str, ...] = ()
 
     @property
     def extent(self) -> Vec3:

@@ -47,7 +47,8 @@ def summarize(mesh: LoadedMesh) -> MeshSummary:
     integrals = volume_integrals(triangles)
     signed = integrals.volume
     common = {"signed_volume": signed, "bounds": box, "health": health,
-              "unit_meter": mesh.unit_meter, "bodies": mesh.bodies}
+              "unit_meter": mesh.unit_meter, "bodies": mesh.bodies,
+              "broken_references": mesh.broken_references}
     if health.encloses_volume and not _flat(signed, box):
         return _oriented(integrals, MassMethod.EXACT, (), common)
     if (health.boundary_edges and not health.misoriented_edges

@@ -209,15 +209,42 @@ def _factor(comparison) -> float:
     return worst
 
 
+#: A sign or rotation cause is named only when, undone, the tensors agree this closely
+#: (relative Frobenius error, or per principal moment): a fit, not a 50% resemblance.
+EXACT_FIT = 0.1
+
+
+def _fitting_cause(comparison) -> str | None:
+    """The comparison's cause, dropped when it is a products-sign swap or a rotation that
+    does not fit within `EXACT_FIT` (those then count as plain deviations)."""
+    from robotdesc.inertia.compare import sign_flip
+    from robotdesc.inertia.tensor import frobenius
+
+    cause = comparison.cause
+    if cause is None:
+        return None
+    if cause.startswith("the sign of"):
+        slack = EXACT_FIT * frobenius(comparison.derived)
+        return cause if sign_flip(comparison.declared, comparison.derived, slack) else None
+    if cause.startswith("the principal moments agree"):
+        return cause if max(comparison.moment_errors) <= EXACT_FIT else None
+    return cause
+
+
+#: I201 leaves links of at most this mass (kg) alone: a gram's tensor moves nothing, and
+#: such links carry placeholder values (I203 skips them too).
+PLACEHOLDER_MASS = 1e-3
+
+
 def _mismatch_findings(robot: Robot, ctx: RuleContext, tolerance: float,
-                       keep) -> Iterator[Finding]:
+                       keep, min_mass: float = 0.0) -> Iterator[Finding]:
     from robotdesc.inertia.compare import mirror_partner
 
     results = _comparisons(robot, ctx, tolerance)
     for name, (link, geometry, comparison) in results.items():
-        if not comparison.mismatch(tolerance):
+        if not comparison.mismatch(tolerance) or link.inertial.mass <= min_mass:
             continue
-        cause = comparison.cause
+        cause = _fitting_cause(comparison)
         partner = mirror_partner(name, set(results))
         if partner and not results[partner][2].mismatch(tolerance):
             mirror = f"its mirror link '{partner}' agrees with its geometry"
@@ -243,11 +270,13 @@ def inertia_differs_from_geometry(robot: Robot, ctx: RuleContext) -> Iterator[Fi
     more in a principal moment, or in a way that has a recognised cause.
 
     The recognised causes: a unit slip (a factor of 1e3, 1e6 or 1e9: grams, millimetres),
-    a rotated tensor (same principal moments, other axes), products of inertia with the CAD
-    sign convention. A left/right mirror link that agrees with its own geometry is named too.
+    a rotated tensor (the same principal moments within 10%, other axes), products of
+    inertia with the CAD sign convention (flipping their signs matches the geometry within
+    10%). A left/right mirror link that agrees with its own geometry is named too.
     The fix is the `<inertial>` computed from the geometry, at the declared mass (with a mesh
     diagnosed as millimetres scaled by 0.001 first). Smaller deviations without a cause are
-    I205's (off by default): a real link is not of uniform density.
+    I205's (off by default): a real link is not of uniform density. Links of a gram or less
+    (placeholder frames) are left alone.
 
     Why is this bad?
     The tensor decides how the link responds to torque. Values typed by hand, converted
@@ -282,7 +311,7 @@ def inertia_differs_from_geometry(robot: Robot, ctx: RuleContext) -> Iterator[Fi
     tolerance = DeviationOptions.tolerance
     yield from _mismatch_findings(
         robot, ctx, tolerance,
-        lambda c: _factor(c) >= factor or _has_cause(c))
+        lambda c: _factor(c) >= factor or _has_cause(c), min_mass=PLACEHOLDER_MASS)
 
 
 def _has_cause(comparison) -> bool:

@@ -343,10 +343,17 @@ def axis_not_normalized(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
                           f"joint:{joint.name}", fix=f'<axis xyz="{unit}"/>')
 
 
+#: A range at least this wide (rad, with rounding slack) on a continuous joint limits nothing.
+FULL_TURN = 2 * math.pi - 1e-6
+
+
 @rule("J108", "continuous-joint-with-position-limits", family=FAMILY,
       severity=Severity.WARNING)
 def continuous_joint_with_position_limits(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
-    """Finds a continuous joint whose `<limit>` sets a non-zero `lower` or `upper`.
+    """Finds a continuous joint whose `<limit>` sets a non-zero `lower` or `upper` spanning
+    less than a full turn: a range the author meant to enforce, which consumers ignore.
+    Limits of a full turn or more (`-6.28 .. 6.28`, Kinova's convention for an endless
+    joint) restrict nothing and are not reported.
 
     Why is this bad?
     A continuous joint has no position limits; consumers ignore `lower`/`upper` on it. If
@@ -377,6 +384,9 @@ def continuous_joint_with_position_limits(robot: Robot, ctx: RuleContext) -> Ite
     for joint in robot.joints:
         limit = joint.limit
         if joint.type != "continuous" or limit is None:
+            continue
+        span = (limit.upper or 0.0) - (limit.lower or 0.0)
+        if span >= FULL_TURN:
             continue
         if (limit.lower or 0.0) != 0.0 or (limit.upper or 0.0) != 0.0:
             lower = "unset" if limit.lower is None else f"{limit.lower:g}"

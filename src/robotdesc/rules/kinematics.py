@@ -14,7 +14,13 @@ from dataclasses import dataclass
 
 from robotdesc.diagnostics import Finding, Severity
 from robotdesc.kinematics import tree
-from robotdesc.kinematics.configuration import joint_range, zero_configuration
+from robotdesc.kinematics.configuration import (
+    default_configuration,
+    follow_mimics,
+    independent_joints,
+    joint_range,
+    zero_configuration,
+)
 from robotdesc.kinematics.mirror import mirror_pairs
 from robotdesc.model.elements import Joint, Robot
 from robotdesc.rules.registry import RuleContext, rule
@@ -143,9 +149,13 @@ class MassRatioOptions:
 
 
 @rule("K103", "mass-ratio-across-joint", family=FAMILY, severity=Severity.WARNING,
-      options=MassRatioOptions)
+      options=MassRatioOptions, opt_in=True)
 def mass_ratio_across_joint(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a moving joint whose two bodies' masses differ by more than `max_ratio`.
+
+    Off by default (`--select K103`): real robots have such ratios by design (a 50 g caster
+    wheel under a 40 kg base, TIAGo and PMB2), so most findings on real packages are right
+    masses; turn it on when tuning a model for an engine that struggles with them (ODE).
 
     Bodies are compared as simulators build them: links joined by fixed joints are merged
     into one body first.
@@ -222,7 +232,7 @@ class MirrorOptions:
 
 
 @rule("K104", "mirrored-joints-differ", family=FAMILY, severity=Severity.WARNING,
-      options=MirrorOptions)
+      options=MirrorOptions, opt_in=True)
 def mirrored_joints_differ(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a left/right pair of joints (left_/right_, l_/r_, _l/_r) whose type, origin,
     axis or range of motion differ beyond the tolerances, allowing for the mirror.
@@ -232,6 +242,11 @@ def mirrored_joints_differ(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     by a half turn (a common way to build the other side); limits as the range
     [lower, upper] or its mirror [-upper, -lower]. A family of many pairs that differ in the
     same way (the taxels of a skin) is reported once.
+
+    Off by default (`--select K104`): names are a weak sign of a mirror. On real packages
+    most pairs it found were not mirrors of each other: Yaskawa's `joint_l`/`joint_r` are
+    the L and R axes, and the front-left/front-right sensors of one foot or bumper sit where
+    the hardware puts them, not symmetrically (docs/precision.md).
 
     Why is this bad?
     The two sides of a symmetric robot are usually one macro called twice; a difference is
@@ -422,7 +437,9 @@ def self_collision_at_default(robot: Robot, ctx: RuleContext) -> Iterator[Findin
     Adjacency is MoveIt Setup Assistant's: links joined by fixed joints are one rigid body and
     never reported; links whose bodies a joint connects (directly, or through bodies without
     collision geometry) are adjacent. A pair that also collides at every sampled
-    configuration (links in contact by design, such as a mimic-coupled linkage) is K203's.
+    configuration (links in contact by design, such as a mimic-coupled linkage), or that
+    touches only because joints sit at a limit in the default configuration (a gripper
+    closed at 0, a folded rest pose) and parts once they move inward, is K203's.
 
     Why is this bad?
     A robot that starts in self-collision cannot be planned for: MoveIt rejects the start
@@ -461,9 +478,9 @@ def self_collision_at_default(robot: Robot, ctx: RuleContext) -> Iterator[Findin
     found = _self_collisions(robot, ctx, "K201")
     if found is None:
         return
-    colliding, always = found
+    colliding, always, at_limits = found
     for first, second in colliding:
-        if (first, second) in always:
+        if (first, second) in always or (first, second) in at_limits:
             continue
         link = robot.link(second)
         yield Finding(f"links '{first}' and '{second}' collide in the default configuration "
@@ -471,8 +488,12 @@ def self_collision_at_default(robot: Robot, ctx: RuleContext) -> Iterator[Findin
                       link.where if link else None, f"link:{second}")
 
 
-#: The last robot's (default collisions, always-in-contact pairs): K201 and K203 share them.
+#: The last robot's (default collisions, always-in-contact pairs, pairs in contact at joint
+#: limits): K201 and K203 share them.
 _COLLISIONS: dict[str, tuple] = {}
+#: Joints at a limit in the default configuration are moved this fraction of their range
+#: inward to tell a contact at the limit (a closed gripper) from an overlap.
+INWARD_FRACTION = 0.1
 
 
 def _self_collisions(robot: Robot, ctx: RuleContext, code: str):
@@ -493,9 +514,41 @@ def _self_collisions(robot: Robot, ctx: RuleContext, code: str):
     except KinematicBuildError:
         return None  # K101 or a structural rule reports it
     colliding = default_collisions(prepared)
-    result = (colliding, set(always_in_contact(prepared, colliding)))
+    always = set(always_in_contact(prepared, colliding))
+    at_limits = _contact_at_limits(robot, prepared, [p for p in colliding if p not in always])
+    result = (colliding, always, at_limits)
     _COLLISIONS["last"] = (robot, result)
     return result
+
+
+def _contact_at_limits(robot: Robot, prepared, pairs: list[tuple[str, str]]
+                       ) -> set[tuple[str, str]]:
+    """The pairs that part when every independent joint sitting at a limit in the default
+    configuration moves `INWARD_FRACTION` of its range inward (mimic joints following)."""
+    from robotdesc.srdf.matrix import collisions_at
+
+    if not pairs:
+        return set()
+    default = default_configuration(robot)
+    moved: dict[str, float] = {}
+    for joint in independent_joints(robot):
+        found = joint_range(joint)
+        value = default.get(joint.name)
+        if found is None or not found.bounded or value is None:
+            continue
+        span = found.upper - found.lower
+        if span <= 0:
+            continue
+        if abs(value - found.lower) <= 1e-9 * span:
+            moved[joint.name] = value + INWARD_FRACTION * span
+        elif abs(value - found.upper) <= 1e-9 * span:
+            moved[joint.name] = value - INWARD_FRACTION * span
+    if not moved:
+        return set()
+    drivers = {j.name: default.get(j.name, 0.0) for j in independent_joints(robot)}
+    configuration = follow_mimics(robot, {**drivers, **moved})
+    still = set(collisions_at(prepared, configuration, list(pairs)))
+    return {pair for pair in pairs if pair not in still}
 
 
 @rule("K203", "links-always-in-contact", family=FAMILY, severity=Severity.INFO,
@@ -505,6 +558,11 @@ def links_always_in_contact(robot: Robot, ctx: RuleContext) -> Iterator[Finding]
     configuration and at every sampled configuration of the joints: links in contact by
     design (the bars of a mimic-coupled four-bar linkage, a hand's safety box). They are
     reported once, with the SRDF lines that disable them.
+
+    Pairs in contact at the default configuration only because joints sit at a limit there
+    (fingers of a gripper closed at 0, an arm folded into its rest pose), which part when
+    those joints move a tenth of their range inward, are reported in a second finding:
+    MoveIt's Setup Assistant disables them with reason "Default".
 
     Why is this bad?
     It is not a mistake in the URDF, but MoveIt treats the robot as always in
@@ -534,17 +592,22 @@ def links_always_in_contact(robot: Robot, ctx: RuleContext) -> Iterator[Finding]
     found = _self_collisions(robot, ctx, "K203")
     if found is None:
         return
-    colliding, always = found
-    pairs = [pair for pair in colliding if pair in always]
-    if not pairs:
-        return
-    lines = "; ".join(f'<disable_collisions link1="{a}" link2="{b}" reason="Always"/>'
-                      for a, b in pairs)
-    link = robot.link(pairs[0][1])
-    yield Finding(f"{len(pairs)} link pair(s) are in contact at every sampled configuration "
-                  f"(by design): {', '.join(f'{a}/{b}' for a, b in pairs)}; disable them in the "
-                  f"SRDF: {lines}", link.where if link else robot.where,
-                  f"link:{pairs[0][1]}", "\n".join(lines.split("; ")))
+    colliding, always, at_limits = found
+    for chosen, reason, what in (
+            (always, "Always", "are in contact at every sampled configuration (by design)"),
+            (at_limits, "Default", "are in contact at the default configuration only because "
+             "joints sit at a limit there (a closed gripper, a folded rest pose); they part "
+             "when those joints move inward")):
+        pairs = [pair for pair in colliding if pair in chosen]
+        if not pairs:
+            continue
+        lines = "; ".join(f'<disable_collisions link1="{a}" link2="{b}" reason="{reason}"/>'
+                          for a, b in pairs)
+        link = robot.link(pairs[0][1])
+        yield Finding(f"{len(pairs)} link pair(s) {what}: "
+                      f"{', '.join(f'{a}/{b}' for a, b in pairs)}; disable them in the "
+                      f"SRDF: {lines}", link.where if link else robot.where,
+                      f"link:{pairs[0][1]}", "\n".join(lines.split("; ")))
 
 
 def _mesh_path(robot: Robot, ctx: RuleContext):

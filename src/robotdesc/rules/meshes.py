@@ -27,15 +27,28 @@ def _element(link, kind: str, index: int) -> str:
 
 
 def _lookups(ctx: RuleContext, physical_only: bool = False) -> Iterator[tuple]:
-    """(link, kind, index, reference, lookup) per `<mesh>`; `physical_only`: collision
-    meshes, and visual meshes where they are the link's mass source."""
+    """(link, kind, index, reference, lookup) per `<mesh>`; `physical_only`: only meshes
+    whose volume robotdesc uses (see `_volume_used`)."""
     if ctx.meshes is None:
         return
     source = ctx.meshes.settings.inertia_source
     for link, kind, index, _shape, ref in ctx.meshes.meshes():
-        if physical_only and kind == "visual" and source != "visual" and link.collisions:
+        if physical_only and not _volume_used(link, kind, source):
             continue
         yield link, kind, index, ref, ctx.meshes.lookup(ref)
+
+
+def _volume_used(link, kind: str, source: str) -> bool:
+    """Collision meshes (engines collide with their volume), and visual meshes of a link
+    whose declared mass properties are judged from them: the link has an `<inertial>` with
+    a positive mass, and visual geometry is the configured source or the link has no
+    collision geometry."""
+    if kind == "collision":
+        return True
+    inertial = link.inertial
+    if inertial is None or inertial.mass is None or not inertial.mass > 0:
+        return False
+    return source == "visual" or not link.collisions
 
 
 def _resolve_problems(ctx: RuleContext, kinds: set[str]) -> Iterator[Finding]:
@@ -211,11 +224,13 @@ def mesh_is_lfs_pointer(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
 
 @rule("M107", "malformed-mesh-file", family=FAMILY, severity=Severity.ERROR, needs=NEEDS)
 def malformed_mesh_file(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
-    """Finds a mesh file that cannot be read as a mesh: truncated, a binary STL whose
+    """Finds a mesh file whose geometry cannot be read: truncated, a binary STL whose
     header claims more triangles than the file holds, NaN or infinite coordinates, face
     indices out of range, no triangles, an unsupported format, or over the size limits.
 
     The message names the cause (`truncated`, `non-finite`, `bad-index`, `too-large`, ...).
+    A COLLADA file whose geometry reads but whose material or texture references are
+    broken is not malformed: that is M116's milder finding.
 
     Why is this bad?
     Consumers crash, hang allocating for a bogus header, or silently load garbage (NaN
@@ -237,6 +252,50 @@ def malformed_mesh_file(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     ```
     """
     yield from _mesh_errors(ctx, None, exclude={"lfs-pointer"})
+
+
+@rule("M116", "mesh-broken-material-reference", family=FAMILY, severity=Severity.WARNING,
+      needs=NEEDS)
+def mesh_broken_material_reference(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a COLLADA mesh whose geometry reads but whose materials, effects or texture
+    images do not resolve: an `<instance_material>` naming no `<material>`, an effect
+    sampling a surface that is not defined, an `<image>` whose file does not exist.
+
+    Each file is reported once per robot, at its first `<mesh>`.
+
+    Why is this bad?
+    RViz (assimp) and Gazebo draw the geometry with a default grey material or without its
+    texture, and loaders that build the materials first (pycollada, some exporters'
+    re-importers) drop the node that uses the broken material, geometry and all.
+
+    Example
+    ```xml
+    <link name="foot">
+      <!-- foot.dae: <instance_material target="#carbon-material"/>, and no such material -->
+      <visual><geometry><mesh filename="package://leg/meshes/foot.dae"/></geometry></visual>
+    </link>
+    ```
+
+    Use instead (the material defined, or the binding removed):
+    ```xml
+    <link name="foot">
+      <!-- foot.dae: <material id="carbon-material"> defined in <library_materials> -->
+      <visual><geometry><mesh filename="package://leg/meshes/foot.dae"/></geometry></visual>
+    </link>
+    ```
+    """
+    seen: set[str] = set()
+    for link, kind, index, ref, found in _lookups(ctx):
+        summary = found.summary
+        if summary is None or not summary.broken_references or found.resolution.path in seen:
+            continue
+        seen.add(found.resolution.path)
+        problems = summary.broken_references
+        listed = "; ".join(problems[:3]) + (f"; and {len(problems) - 3} more"
+                                            if len(problems) > 3 else "")
+        yield Finding(f"'{ref.filename}' has broken material or texture references "
+                      f"({listed}); its geometry ({summary.health.triangles} triangles) is "
+                      "read without them", ref.where, _element(link, kind, index))
 
 
 @rule("M108", "mesh-in-millimetres", family=FAMILY, severity=Severity.WARNING, needs=NEEDS)
@@ -299,8 +358,14 @@ def _health_findings(ctx: RuleContext, check) -> Iterator[Finding]:
 
 @rule("M109", "mesh-not-watertight", family=FAMILY, severity=Severity.WARNING, needs=NEEDS)
 def mesh_not_watertight(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
-    """Finds a collision mesh (or a visual mesh used for mass properties) that is not
-    closed: it has holes (boundary edges) or edges shared by more than two faces.
+    """Finds a mesh whose volume robotdesc uses that is not closed: it has holes (boundary
+    edges) or edges shared by more than two faces.
+
+    The meshes judged are collision meshes, and visual meshes of a link with a mass whose
+    inertia is judged from them (the configured `inertia-source` is "visual", or the link
+    has no collision geometry); a visual mesh of a link without `<inertial>` is never
+    reported. Vertices on the rims of holes closer than a millionth of the mesh's size are
+    merged first: exporters' rounding leaves such cracks, and no consumer sees them.
 
     The message says how its mass properties were obtained instead (holes capped, or the
     convex hull).
@@ -527,11 +592,17 @@ def collision_mesh_over_budget(robot: Robot, ctx: RuleContext) -> Iterator[Findi
                           _element(link, kind, index))
 
 
-@rule("M115", "link-without-collision", family=FAMILY, severity=Severity.WARNING)
+@rule("M115", "link-without-collision", family=FAMILY, severity=Severity.WARNING,
+      opt_in=True)
 def link_without_collision(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a link that has a `<visual>` but no `<collision>`, in a description meant for
     dynamics (one in which some moving link declares a mass). Placeholder links lighter
     than a gram are skipped.
+
+    Off by default (`--select M115`): on real packages most such links are meant to have no
+    collision (an IMU or laser housing inside the body, a rotor inside the leg, a decorative
+    cover), so only a review of a whole robot's collision coverage should turn it on
+    (docs/precision.md).
 
     Why is this bad?
     In simulation the link passes through the floor and through other links; planners do
