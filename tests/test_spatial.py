@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from robotdesc.inertia.tensor import (
+from robotdesc.spatial import (
     ZERO,
     compose,
     conjugated,

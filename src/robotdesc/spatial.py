@@ -1,15 +1,22 @@
-"""Pure-Python arithmetic on 3-vectors, rotations and symmetric 3x3 inertia tensors.
+"""Spatial math of the core: 3-vectors, rotations, poses and symmetric 3x3 inertia tensors.
 
 The one implementation of this small per-link math: the structural inertia rules, the
-mesh-derived link properties and the comparisons all use it, and they run on every lint, so
-none of it imports numpy (numpy is for bulk triangle integrals only). Units: lengths in m,
-angles in rad, inertia in kg*m^2.
+mesh-derived link properties, the comparisons, forward kinematics, the viewer, the simulators
+and the collision tools all use it. The per-link functions are plain Python (they run on every
+lint, which must not import numpy); `rpy_matrix` and `pose_matrix` give numpy arrays for array
+code and import numpy when called. Units: lengths in m, angles in rad, inertia in kg*m^2.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import numpy as np
+
+    from robotdesc.model.elements import Pose
 
 Vec3 = tuple[float, float, float]
 Mat3 = tuple[Vec3, Vec3, Vec3]
@@ -161,3 +168,22 @@ def parallel_axis(inertia: Sequence[Sequence[float]], mass: float,
 
 def _mat3(rows: Sequence[Sequence[float]]) -> Mat3:
     return tuple((float(r[0]), float(r[1]), float(r[2])) for r in rows)  # type: ignore[return-value]
+
+
+def rpy_matrix(rpy: Sequence[float]) -> "np.ndarray":
+    """URDF's rotation from roll, pitch, yaw (rad, fixed axes x, y, z) as a (3, 3) array:
+    `rpy_rotation` as numpy, for array code."""
+    import numpy as np
+
+    return np.array(rpy_rotation(rpy))
+
+
+def pose_matrix(pose: "Pose") -> "np.ndarray":
+    """The 4x4 homogeneous transform of an `<origin>` (child frame in the parent frame; xyz in
+    m, rpy in rad, URDF's fixed-axis convention)."""
+    import numpy as np
+
+    matrix = np.identity(4)
+    matrix[:3, :3] = rpy_matrix(pose.rpy)
+    matrix[:3, 3] = pose.xyz
+    return matrix

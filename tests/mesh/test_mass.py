@@ -15,9 +15,9 @@ from robotdesc.mesh.mass import (
     bounds,
     combine,
     link_mass_properties,
-    rpy_matrix,
     volume_integrals,
 )
+from robotdesc.spatial import rpy_matrix
 
 from .builders import box_triangles
 

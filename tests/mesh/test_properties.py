@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from robotdesc.inertia.tensor import rpy_rotation
+from robotdesc.spatial import rpy_rotation
 from robotdesc.mesh.mass import volume_integrals
 from robotdesc.mesh.primitives import box_properties
 from robotdesc.mesh.properties import MassProperties, combine, moved_bounds

@@ -15,10 +15,10 @@ from robotdesc.sim.convert import (  # noqa: E402
     SimModelError,
     build_scene,
     lowest_point,
-    rpy_matrix,
     rpy_to_quat,
 )
 from robotdesc.sim.meshes import MeshAssets, indexed  # noqa: E402
+from robotdesc.spatial import rpy_matrix
 
 from .sim_support import ERD, FIXTURES, load  # noqa: E402
 

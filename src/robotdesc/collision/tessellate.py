@@ -8,19 +8,11 @@ import math
 import numpy as np
 
 from robotdesc.collision.result import MeshPart
-from robotdesc.mesh.mass import rpy_matrix
+from robotdesc.spatial import pose_matrix
 from robotdesc.model.elements import Box, Capsule, Cylinder, Pose, Sphere
 
 #: Segments around a round primitive's axis (the error of the chord: 0.12 % of the radius).
 SECTIONS = 64
-
-
-def pose_matrix(pose: Pose) -> np.ndarray:
-    """The 4x4 transform of an `<origin>` (child frame in the parent frame)."""
-    matrix = np.eye(4)
-    matrix[:3, :3] = rpy_matrix(pose.rpy)
-    matrix[:3, 3] = pose.xyz
-    return matrix
 
 
 def matrix_rpy(rotation: np.ndarray) -> tuple[float, float, float]:

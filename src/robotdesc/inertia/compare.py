@@ -2,7 +2,7 @@
 likely cause of a mismatch when the numbers say so.
 
 Units: kg, m, kg*m^2. Both tensors are about the centre of mass, in link-frame axes.
-Plain Python (`robotdesc.inertia.tensor`): it runs on every lint with mesh rules.
+Plain Python (`robotdesc.spatial`): it runs on every lint with mesh rules.
 """
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ import itertools
 import math
 from dataclasses import dataclass
 
-from robotdesc.inertia.tensor import Mat3, Vec3, difference, frobenius, principal_moments, rotated
+from robotdesc.spatial import Mat3, Vec3, difference, frobenius, principal_moments, rotated
 from robotdesc.mesh.properties import MassProperties
 from robotdesc.model.elements import Inertial
 

@@ -86,7 +86,7 @@ class InertiaTable:
 
 def inertia_table(robot: Robot, meshes: MeshContext, tolerance: float = 0.5) -> list[InertiaRow]:
     """One row per link that declares an inertial or has geometry."""
-    from robotdesc.inertia.tensor import principal_moments
+    from robotdesc.spatial import principal_moments
 
     rows = []
     for link in robot.links:

@@ -16,8 +16,9 @@ from typing import Any
 import numpy as np
 
 from robotdesc.kinematics.urdf_text import MeshPath
-from robotdesc.model.elements import Box, Capsule, Cylinder, MeshRef, Pose, Robot, Sphere
+from robotdesc.model.elements import Box, Capsule, Cylinder, MeshRef, Robot, Sphere
 from robotdesc.source import Provenance
+from robotdesc.spatial import pose_matrix
 
 log = logging.getLogger(__name__)
 
@@ -72,16 +73,6 @@ class ShapeProblem:
     link: str
     message: str
     where: Provenance | None = None
-
-
-def pose_matrix(pose: Pose) -> np.ndarray:
-    """The 4x4 homogeneous transform of an `<origin>` (m, rad; URDF's fixed-axis rpy)."""
-    from robotdesc.mesh.mass import rpy_matrix
-
-    matrix = np.identity(4)
-    matrix[:3, :3] = rpy_matrix(pose.rpy)
-    matrix[:3, 3] = pose.xyz
-    return matrix
 
 
 @functools.lru_cache(maxsize=256)

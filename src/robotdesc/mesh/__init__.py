@@ -19,7 +19,7 @@ _EXPORTS = {
     "LoadedMesh": "load", "load_mesh": "load",
     "MassProperties": "properties", "combine": "properties",
     "link_mass_properties": "properties",
-    "rpy_matrix": "mass", "volume_integrals": "mass",
+    "volume_integrals": "mass",
     "primitive_properties": "primitives",
     "MeshResolution": "resolve", "ResolveProblem": "resolve", "ResolveProblemKind": "resolve",
     "resolve_mesh": "resolve",
@@ -32,7 +32,7 @@ __all__ = [
     "MeshHealth", "MeshLimits", "MeshResolution", "MeshSummary", "ResolveProblem",
     "ResolveProblemKind", "analyze_mesh_file", "combine", "default_cache_dir",
     "link_mass_properties", "load_mesh", "mesh_health", "primitive_properties",
-    "resolve_mesh", "rpy_matrix", "summarize", "volume_integrals",
+    "resolve_mesh", "summarize", "volume_integrals",
 ]
 
 

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from robotdesc.inertia.tensor import Mat3, Vec3, rpy_rotation
+from robotdesc.spatial import Mat3, Vec3
 from robotdesc.mesh.properties import MassProperties, combine, link_mass_properties
 
 __all__ = [
@@ -33,19 +33,12 @@ __all__ = [
     "combine",
     "link_mass_properties",
     "reference_point",
-    "rpy_matrix",
     "volume_integrals",
 ]
 
 #: Triangles per numpy chunk: large enough to amortise numpy's call overhead, small enough
 #: for the temporaries to stay in cache.
 CHUNK_TRIANGLES = 1 << 14
-
-
-def rpy_matrix(rpy: Sequence[float]) -> np.ndarray:
-    """URDF's rotation from roll, pitch, yaw (rad) as a (3, 3) array, for array code:
-    `robotdesc.inertia.tensor.rpy_rotation` as numpy."""
-    return np.array(rpy_rotation(rpy))
 
 
 @dataclass(frozen=True)

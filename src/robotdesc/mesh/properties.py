@@ -16,7 +16,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from robotdesc.inertia.tensor import (
+from robotdesc.spatial import (
     ZERO,
     Mat3,
     Vec3,

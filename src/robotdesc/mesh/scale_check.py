@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from robotdesc.inertia.tensor import add, compose, norm, rotate, rpy_rotation, subtract
+from robotdesc.spatial import add, compose, norm, rotate, rpy_rotation, subtract
 from robotdesc.model.elements import Robot
 
 #: A mesh is suspicious when it is this many times larger than the robot (or its peers).

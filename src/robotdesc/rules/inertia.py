@@ -20,7 +20,7 @@ from robotdesc.inertia.links import (
     parent_joints,
     root_links,
 )
-from robotdesc.inertia.tensor import (
+from robotdesc.spatial import (
     MAX_MATERIAL_DENSITY,
     minimum_trace,
     principal_moments,

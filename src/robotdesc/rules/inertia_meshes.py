@@ -218,7 +218,7 @@ def _fitting_cause(comparison) -> str | None:
     """The comparison's cause, dropped when it is a products-sign swap or a rotation that
     does not fit within `EXACT_FIT` (those then count as plain deviations)."""
     from robotdesc.inertia.compare import sign_flip
-    from robotdesc.inertia.tensor import frobenius
+    from robotdesc.spatial import frobenius
 
     cause = comparison.cause
     if cause is None:

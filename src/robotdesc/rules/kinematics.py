@@ -343,7 +343,7 @@ def _mirrored_rotation_gap(rpy_a, rpy_b) -> float:
     (P R P), possibly turned by a half turn about one of its own or the parent's axes.
 
     Angles are compared as rotations, so -4.71239 and 1.5708 are the same (modulo 2*pi)."""
-    from robotdesc.inertia.tensor import rpy_rotation
+    from robotdesc.spatial import rpy_rotation
 
     ra, rb = rpy_rotation(rpy_a), rpy_rotation(rpy_b)
     best = math.pi

@@ -37,6 +37,7 @@ from robotdesc.model.elements import (
 from robotdesc.sim.backend import import_mujoco
 from robotdesc.sim.meshes import MeshAssets
 from robotdesc.source import Span
+from robotdesc.spatial import rpy_matrix
 
 log = logging.getLogger(__name__)
 
@@ -529,16 +530,6 @@ def principal_axes(tensor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     if np.linalg.det(axes) < 0:
         axes[:, 2] = -axes[:, 2]
     return moments, axes
-
-
-def rpy_matrix(rpy: tuple[float, float, float]) -> np.ndarray:
-    """URDF roll-pitch-yaw (rad, fixed axes x, y, z) as a rotation matrix."""
-    r, p, y = rpy
-    cr, sr, cp, sp, cy, sy = (math.cos(r), math.sin(r), math.cos(p), math.sin(p),
-                              math.cos(y), math.sin(y))
-    return np.array([[cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-                     [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-                     [-sp, cp * sr, cp * cr]])
 
 
 def rpy_to_quat(rpy: tuple[float, float, float]) -> list[float]:

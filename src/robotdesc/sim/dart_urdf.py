@@ -189,7 +189,7 @@ class _Writer:
                 "    </collision>"]
 
     def _capsule(self, origin: Pose, capsule: Capsule) -> list[str]:
-        from robotdesc.sim.convert import rpy_matrix
+        from robotdesc.spatial import rpy_matrix
 
         axis = rpy_matrix(origin.rpy)[:, 2] * capsule.length / 2
         lines = self.shape(origin, Cylinder(capsule.radius, capsule.length))

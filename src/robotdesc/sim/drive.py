@@ -28,7 +28,7 @@ import numpy as np
 
 from robotdesc.errors import InputError
 from robotdesc.model.elements import Cylinder, Robot, Sphere
-from robotdesc.sim.convert import rpy_matrix
+from robotdesc.spatial import rpy_matrix
 from robotdesc.sim.engine import EngineScene
 
 log = logging.getLogger(__name__)

@@ -18,22 +18,14 @@ from collections.abc import Mapping
 import numpy as np
 
 from robotdesc.errors import UsageError
-from robotdesc.mesh.mass import rpy_matrix
-from robotdesc.model.elements import Joint, Pose, Robot
+from robotdesc.spatial import pose_matrix
+from robotdesc.model.elements import Joint, Robot
 
 log = logging.getLogger(__name__)
 
 #: Joint types that take a value (rad or m).
 MOVING_TYPES = frozenset({"revolute", "continuous", "prismatic"})
 DEFAULT_AXIS = (1.0, 0.0, 0.0)
-
-
-def pose_matrix(pose: Pose) -> np.ndarray:
-    """The 4x4 transform of an `<origin>` (xyz in m, rpy in rad)."""
-    matrix = np.identity(4)
-    matrix[:3, :3] = rpy_matrix(pose.rpy)
-    matrix[:3, 3] = pose.xyz
-    return matrix
 
 
 def axis_rotation(axis: np.ndarray, angle: float) -> np.ndarray:

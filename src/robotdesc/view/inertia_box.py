@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from robotdesc.mesh.mass import rpy_matrix
+from robotdesc.spatial import rpy_matrix
 from robotdesc.model.elements import Inertial
 
 
