@@ -495,8 +495,12 @@ def _parse_toml(text: str, path: str) -> dict:
         import tomllib
     except ModuleNotFoundError:  # Python 3.10
         import tomli as tomllib
+    _check_nesting(text, path)
     try:
         return tomllib.loads(text)
+    except RecursionError:  # not reached after _check_nesting; kept as a last guard
+        raise ConfigError(f"invalid TOML: arrays or tables nested deeper than "
+                          f"{MAX_TOML_DEPTH} levels", Span(path)) from None
     except tomllib.TOMLDecodeError as exc:
         found = re.search(r"\(at line (\d+), column (\d+)\)", str(exc))
         message = re.sub(r"\s*\(at (line \d+, column \d+|end of document)\)", "", str(exc))
@@ -507,6 +511,30 @@ def _parse_toml(text: str, path: str) -> dict:
         else:
             span = Span(path)
         raise ConfigError(f"invalid TOML: {message}", span) from None
+
+
+#: Deepest nesting of arrays and inline tables accepted in a config (tomllib recurses per
+#: level; no robotdesc setting needs more than two).
+MAX_TOML_DEPTH = 32
+
+_TOML_TOKENS = re.compile(r'''"""(?:[^"\\]|\\.|"(?!""))*"""|\'\'\'.*?\'\'\'|"(?:[^"\\\n]|\\.)*"|'[^'\n]*'|#[^\n]*|[\[\]{}\n]''',
+                          re.DOTALL)
+
+
+def _check_nesting(text: str, path: str) -> None:
+    """Refuse arrays or inline tables nested deeper than MAX_TOML_DEPTH, at their line
+    (linear time; strings and comments are skipped)."""
+    depth, line = 0, 1
+    for match in _TOML_TOKENS.finditer(text):
+        token = match.group(0)
+        if token in "[{":
+            depth += 1
+            if depth > MAX_TOML_DEPTH:
+                raise ConfigError(f"invalid TOML: arrays or tables nested deeper than "
+                                  f"{MAX_TOML_DEPTH} levels", Span(path, line))
+        elif token in "]}":
+            depth = max(0, depth - 1)
+        line += token.count("\n")
 
 
 def _configures_robotdesc(path: str) -> bool:

@@ -100,7 +100,7 @@ def test_robot_level_fields() -> None:
     robot = parse_urdf(FULL, "arm.urdf")
     assert robot.name == "arm"
     assert robot.source == "arm.urdf"
-    assert robot.where == Provenance(Span("arm.urdf", 2))
+    assert robot.where == Provenance(Span("arm.urdf", 2, 1))
     assert [link.name for link in robot.links] == ["base", "upper"]
     assert [joint.name for joint in robot.joints] == ["shoulder", "plain"]
     assert robot.value_issues == ()
@@ -191,7 +191,7 @@ def test_gazebo_blocks() -> None:
 def test_plain_urdf_provenance_is_the_element_line() -> None:
     robot = parse_urdf(FULL, "/x/arm.urdf")
     joint = robot.joint("shoulder")
-    assert joint.where == Provenance(Span("/x/arm.urdf", line_of(FULL, b'<joint name="shoulder"')))
+    assert joint.where == Provenance(Span("/x/arm.urdf", line_of(FULL, b'<joint name="shoulder"'), 3))
     assert joint.limit.where.span.line == line_of(FULL, b"<limit lower")
     assert joint.mimic.where.span.line == line_of(FULL, b"<mimic")
     transmission_joint = robot.transmissions[0].joints[0]
@@ -248,7 +248,7 @@ def test_elements_without_the_attribute_inherit_the_nearest_ancestor() -> None:
 
 def test_attribute_is_ignored_without_a_file_table() -> None:
     robot = parse_urdf(EXPANDED, "out.urdf")
-    assert robot.links[1].where == Provenance(Span("out.urdf", 5))
+    assert robot.links[1].where == Provenance(Span("out.urdf", 5, 3))
 
 
 def test_malformed_provenance_falls_back_to_the_ancestor() -> None:
@@ -343,7 +343,7 @@ def test_wrong_root_is_an_input_error_at_its_line() -> None:
     with pytest.raises(InputError) as caught:
         parse_urdf(b'<?xml version="1.0"?>\n\n<sdf version="1.7"/>', "model.sdf")
     assert not isinstance(caught.value, XmlSyntaxError)
-    assert caught.value.span == Span("model.sdf", 3)
+    assert caught.value.span == Span("model.sdf", 3, 1)
     assert "<sdf>" in caught.value.message and "<robot>" in caught.value.message
 
 

@@ -9,6 +9,7 @@ call only). Text after a `;` is a free-form reason: `<!-- robotdesc: ignore J101
 from __future__ import annotations
 
 import functools
+import logging
 import os
 import re
 from dataclasses import dataclass
@@ -19,6 +20,11 @@ from robotdesc.diagnostics import Diagnostic
 _COMMENT = re.compile(rb"<!--(.*?)-->", re.DOTALL)
 _DIRECTIVE = re.compile(r"^\s*robotdesc\s*:\s*ignore\b(.*)$", re.DOTALL | re.IGNORECASE)
 _MARKER = b"robotdesc"
+#: Distinct rule codes read from one comment (more are ignored with a warning): no rule set
+#: has this many, and a comment naming thousands must not make thousands of findings.
+MAX_CODES_PER_COMMENT = 100
+
+log = logging.getLogger(__name__)
 
 
 @dataclass(frozen=True)
@@ -66,7 +72,10 @@ def normalise_path(path: str) -> str:
 
 
 def scan_text(data: bytes, path: str) -> list[Suppression]:
-    """Find the suppression comments in one file's bytes (UTF-8; bad bytes are replaced)."""
+    """Find the suppression comments in one file's bytes (UTF-8; bad bytes are replaced).
+
+    A code named twice in one comment counts once; at most MAX_CODES_PER_COMMENT are read.
+    """
     if _MARKER not in data:
         return []
     found = []
@@ -77,10 +86,14 @@ def scan_text(data: bytes, path: str) -> list[Suppression]:
         if not directive:
             continue
         selectors = directive.group(1).split(";", 1)[0]
-        codes = tuple(_normalise_code(token) for token in re.split(r"[,\s]+", selectors)
-                      if token)
+        codes = tuple(dict.fromkeys(_normalise_code(token)
+                                    for token in re.split(r"[,\s]+", selectors) if token))
         start = match.start()
         line = data.count(b"\n", 0, start) + 1
+        if len(codes) > MAX_CODES_PER_COMMENT:
+            log.warning("%s:%d: the suppression comment names %d rules; only the first %d "
+                        "are read", path, line, len(codes), MAX_CODES_PER_COMMENT)
+            codes = codes[:MAX_CODES_PER_COMMENT]
         col = start - (data.rfind(b"\n", 0, start) + 1) + 1
         end_line = line + match.group(0).count(b"\n")
         found.append(Suppression(where, line, end_line, col, codes))

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from robotdesc.model.summary import robot_html, robot_repr
 from robotdesc.source import Provenance
 
 Vec3 = tuple[float, float, float]
@@ -278,6 +279,14 @@ class Robot:
 
     def link(self, name: str) -> Link | None:
         return next((link for link in self.links if link.name == name), None)
+
+    def __repr__(self) -> str:
+        """A one-line summary (name, counts, mass, DoF), never the whole model."""
+        return robot_repr(self)
+
+    def _repr_html_(self) -> str:
+        """A small HTML summary for Jupyter: counts, mass, DoF, the top of the tree."""
+        return robot_html(self)
 
     def joint(self, name: str) -> Joint | None:
         return next((joint for joint in self.joints if joint.name == name), None)

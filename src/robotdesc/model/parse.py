@@ -44,19 +44,19 @@ from robotdesc.model.elements import (
     Vec3,
     Visual,
 )
+from robotdesc.model.numbers import DEFAULT_LIMITS, NumberLimits, check_number, check_vector
 from robotdesc.source import PROVENANCE_ATTR, Provenance, Span, decode_provenance
+from robotdesc.xml_input import XmlOptions, parse_xml, start_tag_positions
 
 log = logging.getLogger(__name__)
 
-_LXML_POSITION_SUFFIX = re.compile(r",? line \d+, column \d+$")
 _PROVENANCE_ATTRIBUTE = re.compile(
     rb"""[ \t\r\n]+""" + PROVENANCE_ATTR.encode() + rb"""=(?:"[0-9:;*]*"|'[0-9:;*]*')""")
 
 _MARKUP = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>|<[A-Za-z_:][^>]*>", re.DOTALL)
 
-_WHITESPACE = re.compile(rb"[ \t\r\n]*")
-
 _ZERO: Vec3 = (0.0, 0.0, 0.0)
+_DESCRIPTION = XmlOptions(what="robot description")
 
 
 def parse_urdf(data: bytes, path: str, files: tuple[str, ...] = ()) -> Robot:
@@ -75,11 +75,22 @@ def parse_urdf(data: bytes, path: str, files: tuple[str, ...] = ()) -> Robot:
         XmlSyntaxError: the XML is malformed or declares a DOCTYPE.
         InputError: the root element is not `<robot>`.
     """
-    root = _parse_xml(data, path)
+    if isinstance(data, str):
+        data = data.encode("utf-8")
+    try:
+        root = parse_xml(data, path, _DESCRIPTION)
+    except XmlSyntaxError as error:
+        if not files or error.span is None or not error.span.line:
+            raise
+        # a position in the expanded document is no position in the xacro source
+        raise XmlSyntaxError(f"{error.message} (in the document xacro expanded this file to, "
+                             f"line {error.span.line})", Span(path)) from None
+    positions = {} if files else start_tag_positions(data, root)
     if root.tag != "robot":
+        line, col = positions.get(root, (root.sourceline or 0, 0))
         raise InputError(f"the root element is <{_tag(root)}>, expected <robot>",
-                         Span(path, root.sourceline or 0))
-    return _RobotReader(path, files).robot(root)
+                         Span(path, line, col))
+    return _RobotReader(path, files, positions).robot(root)
 
 
 def strip_provenance(data: bytes) -> bytes:
@@ -99,53 +110,6 @@ def strip_provenance(data: bytes) -> bytes:
         return _PROVENANCE_ATTRIBUTE.sub(b"", markup)
 
     return _MARKUP.sub(clean, data)
-
-
-def _parse_xml(data: bytes, path: str) -> etree._Element:
-    if isinstance(data, str):
-        data = data.encode("utf-8")
-    doctype_at = _doctype_offset(data)
-    if doctype_at >= 0:
-        line = data.count(b"\n", 0, doctype_at) + 1
-        raise XmlSyntaxError("a DOCTYPE is not allowed in a robot description "
-                             "(entities and DTDs are refused)", Span(path, line))
-    parser = etree.XMLParser(resolve_entities=False, no_network=True, recover=False,
-                             load_dtd=False, huge_tree=False, remove_comments=True,
-                             remove_pis=True)
-    try:
-        root = etree.fromstring(data, parser)
-    except etree.XMLSyntaxError as error:
-        line, col = error.position if error.position else (error.lineno or 0, 0)
-        message = _LXML_POSITION_SUFFIX.sub("", error.msg or "malformed XML")
-        raise XmlSyntaxError(f"malformed XML: {message}", Span(path, line or 0, col or 0)) from None
-    if root.getroottree().docinfo.doctype:
-        raise XmlSyntaxError("a DOCTYPE is not allowed in a robot description "
-                             "(entities and DTDs are refused)", Span(path, 1))
-    return root
-
-
-def _doctype_offset(data: bytes) -> int:
-    """Offset of a DOCTYPE in the prolog, or -1.
-
-    A DOCTYPE may only follow an optional BOM, the XML declaration, comments, processing
-    instructions and whitespace. Refusing it before libxml2 reads it keeps entity tricks
-    (billion laughs, external entities) out entirely. Linear time.
-    """
-    at = 3 if data.startswith(b"\xef\xbb\xbf") else 0
-    size = len(data)
-    while at < size:
-        at = _WHITESPACE.match(data, at).end()
-        if data.startswith(b"<?", at):
-            end = data.find(b"?>", at + 2)
-            at = size if end < 0 else end + 2
-        elif data.startswith(b"<!--", at):
-            end = data.find(b"-->", at + 4)
-            at = size if end < 0 else end + 3
-        elif data.startswith(b"<!DOCTYPE", at):
-            return at
-        else:
-            return -1
-    return -1
 
 
 def _tag(element: etree._Element) -> str:
@@ -176,12 +140,16 @@ def _firsts(element: etree._Element) -> dict[str, etree._Element]:
 class _RobotReader:
     """Walks the tree once; collects value issues; caches decoded provenance."""
 
-    def __init__(self, path: str, files: tuple[str, ...]) -> None:
+    def __init__(self, path: str, files: tuple[str, ...],
+                 positions: dict[etree._Element, tuple[int, int]] | None = None,
+                 limits: NumberLimits = DEFAULT_LIMITS) -> None:
         self.path = path
         self.files = files
+        self.positions = positions or {}
+        self.limits = limits
+        self._columns = _ColumnFinder()
         self.issues: list[ValueIssue] = []
-        self._decoded: dict[str, Provenance] = {}
-        self._by_line: dict[int, Provenance] = {}
+        self._decoded: dict[tuple[str, str], Provenance] = {}
         self._spans: dict[str, Span] = {}
         self._chains: dict[str, tuple[Span, ...]] = {}
 
@@ -192,17 +160,15 @@ class _RobotReader:
         if self.files:
             value = element.get(PROVENANCE_ATTR)
             if value is not None:
-                found = self._decoded.get(value)
+                key = (value, element.tag)
+                found = self._decoded.get(key)
                 if found is None:
                     found = self._decode(value, element, inherited)
                 return found
             if inherited is not None:
                 return inherited
-        line = element.sourceline or 0
-        found = self._by_line.get(line)
-        if found is None:
-            found = self._by_line[line] = Provenance(Span(self.path, line))
-        return found
+        line, col = self.positions.get(element, (element.sourceline or 0, 0))
+        return Provenance(Span(self.path, line, col))
 
     def _decode(self, value: str, element: etree._Element,
                 inherited: Provenance | None) -> Provenance:
@@ -227,7 +193,9 @@ class _RobotReader:
         except (ValueError, IndexError):
             log.warning("ignoring malformed provenance %r on <%s>", value, _tag(element))
             return inherited or Provenance(Span(self.path, element.sourceline or 0))
-        found = self._decoded[value] = Provenance(span, chain)
+        col = self._columns.column(span, _tag(element))
+        found = self._decoded[(value, element.tag)] = Provenance(
+            Span(span.path, span.line, col) if col else span, chain)
         return found
 
     # -- values -----------------------------------------------------------------------------
@@ -236,8 +204,10 @@ class _RobotReader:
         self.issues.append(ValueIssue(message, where, element))
 
     def number(self, text: str | None, what: str, where: Provenance, owner: str,
-               default: float | None = None, required: bool = False) -> float | None:
-        """Read one number; a missing required one or an unreadable one is an issue."""
+               default: float | None = None, required: bool = False,
+               bound: float | None = None) -> float | None:
+        """Read one number; a missing required one, an unreadable one or one that is not
+        finite or beyond `bound` in magnitude (default: the limit of "other") is an issue."""
         if text is None:
             if required:
                 self.issue(f"{what} is missing (required)", where, owner)
@@ -247,13 +217,19 @@ class _RobotReader:
         except ValueError:
             value = None
         if value is None or math.isnan(value) or "_" in text:
-            self.issue(f"{what}=\"{text}\" is not a number", where, owner)
+            self.issue(f"{what}=\"{_clip(text)}\" is not a number", where, owner)
             return default
-        return value
+        problem = check_number(value, self.limits.other if bound is None else bound,
+                               self.limits.tiny)
+        if problem:
+            self.issue(f"{what}=\"{_clip(text)}\" {problem}", where, owner)
+            return default
+        return value + 0.0  # -0 is 0 (numpy's samplers refuse uniform(0.0, -0.0))
 
     def vector(self, text: str | None, size: int, what: str, where: Provenance, owner: str,
-               default: tuple | None = None, required: bool = False) -> tuple | None:
-        """Read `size` whitespace-separated numbers."""
+               default: tuple | None = None, required: bool = False,
+               bound: float | None = None) -> tuple | None:
+        """Read `size` whitespace-separated numbers (each finite and within `bound`)."""
         if text is None:
             if required:
                 self.issue(f"{what} is missing (required)", where, owner)
@@ -264,9 +240,15 @@ class _RobotReader:
             values = ()
         if (len(values) != size or "_" in text
                 or (("a" in text or "A" in text) and any(map(math.isnan, values)))):
-            self.issue(f"{what}=\"{text}\" is not {size} numbers", where, owner)
+            self.issue(f"{what}=\"{_clip(text)}\" is not {size} numbers", where, owner)
             return default
-        return values
+        problem = check_vector(values, self.limits.other if bound is None else bound,
+                               self.limits.tiny)
+        if problem:
+            self.issue(f"{what}=\"{_clip(text)}\" {problem.replace('is', 'has a value that is', 1)}",
+                       where, owner)
+            return default
+        return tuple(value + 0.0 for value in values)
 
     # -- elements ---------------------------------------------------------------------------
 
@@ -301,8 +283,10 @@ class _RobotReader:
         if element is None:
             return Pose()
         where = self.where(element, parent)
-        xyz = self.vector(element.get("xyz"), 3, "<origin> xyz", where, owner, _ZERO)
-        rpy = self.vector(element.get("rpy"), 3, "<origin> rpy", where, owner, _ZERO)
+        xyz = self.vector(element.get("xyz"), 3, "<origin> xyz", where, owner, _ZERO,
+                          bound=self.limits.length)
+        rpy = self.vector(element.get("rpy"), 3, "<origin> rpy", where, owner, _ZERO,
+                          bound=self.limits.angle)
         return Pose(xyz, rpy, where)
 
     def link(self, element: etree._Element, parent: Provenance) -> Link:
@@ -340,7 +324,8 @@ class _RobotReader:
             self.issue("<inertial> has no <mass> (required)", where, owner)
         else:
             mass = self.number(mass_element.get("value"), "<mass> value",
-                               self.where(mass_element, where), owner, required=True)
+                               self.where(mass_element, where), owner, required=True,
+                               bound=self.limits.mass)
         inertia_element = kids.get("inertia")
         inertia = None
         if inertia_element is None:
@@ -351,7 +336,8 @@ class _RobotReader:
 
     def inertia(self, element: etree._Element, parent: Provenance, owner: str) -> Inertia | None:
         where = self.where(element, parent)
-        values = [self.number(element.get(key), f"<inertia> {key}", where, owner, required=True)
+        values = [self.number(element.get(key), f"<inertia> {key}", where, owner, required=True,
+                              bound=self.limits.inertia)
                   for key in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")]
         if any(value is None for value in values):
             return None
@@ -419,7 +405,7 @@ class _RobotReader:
         if axis_element is not None:
             axis_where = self.where(axis_element, where)
             axis = self.vector(axis_element.get("xyz"), 3, "<axis> xyz", axis_where, owner,
-                               (1.0, 0.0, 0.0))
+                               (1.0, 0.0, 0.0), bound=self.limits.length)
         return Joint(
             name=name, type=element.get("type") or "",
             parent=self.link_reference(kids.get("parent")),
@@ -510,12 +496,13 @@ class _RobotReader:
     # -- shapes -----------------------------------------------------------------------------
 
     def box(self, element, where, owner) -> Box | None:
-        size = self.vector(element.get("size"), 3, "<box> size", where, owner, required=True)
+        size = self.vector(element.get("size"), 3, "<box> size", where, owner, required=True,
+                           bound=self.limits.length)
         return Box(size, where) if size is not None else None
 
     def required(self, element, key: str, where, owner) -> float | None:
         return self.number(element.get(key), f"<{_tag(element)}> {key}", where, owner,
-                           required=True)
+                           required=True, bound=self.limits.length)
 
     def cylinder(self, element, where, owner) -> Cylinder | None:
         radius = self.required(element, "radius", where, owner)
@@ -536,13 +523,51 @@ class _RobotReader:
         if not filename:
             self.issue("<mesh> filename is missing (required)", where, owner)
             return None
-        scale = self.vector(element.get("scale"), 3, "<mesh> scale", where, owner, (1.0, 1.0, 1.0))
+        scale = self.vector(element.get("scale"), 3, "<mesh> scale", where, owner, (1.0, 1.0, 1.0),
+                            bound=self.limits.scale)
+        if scale is not None and any(0 < abs(v) < self.limits.smallest_scale for v in scale):
+            self.issue(f"<mesh> scale=\"{_clip(element.get('scale') or '')}\" has a factor "
+                       f"smaller than {self.limits.smallest_scale:g} in magnitude", where, owner)
+            scale = (1.0, 1.0, 1.0)
         return MeshRef(filename, scale, where)
 
 
 _SHAPES = {"box": _RobotReader.box, "cylinder": _RobotReader.cylinder,
            "sphere": _RobotReader.sphere, "capsule": _RobotReader.capsule,
            "mesh": _RobotReader.mesh}
+
+
+def _clip(text: str, limit: int = 80) -> str:
+    """A value as quoted in a message: at most `limit` characters."""
+    return text if len(text) <= limit else f"{text[:limit]}... ({len(text)} characters)"
+
+
+class _ColumnFinder:
+    """The column of an element's start tag on its source line (for expanded xacro, whose
+    provenance carries lines only): the first `<tag` on the line, else 0."""
+
+    def __init__(self) -> None:
+        self._lines: dict[str, list[str]] = {}
+
+    def column(self, span: Span, tag: str) -> int:
+        if not span.line:
+            return 0
+        lines = self._lines.get(span.path)
+        if lines is None:
+            try:
+                with open(span.path, encoding="utf-8", errors="replace") as handle:
+                    lines = handle.read(MAX_SOURCE_CHARS).splitlines()
+            except OSError:
+                lines = []
+            self._lines[span.path] = lines
+        if span.line > len(lines):
+            return 0
+        match = re.search(rf"<(?:[\w.-]+:)?{re.escape(tag)}(?=[\s/>]|$)", lines[span.line - 1])
+        return match.start() + 1 if match else 0
+
+
+#: Characters of a source file read to find columns.
+MAX_SOURCE_CHARS = 64 * 1024 * 1024
 
 
 def _text(element: etree._Element) -> str:

@@ -29,6 +29,8 @@ Line = list[Segment]
 _SEVERITY_STYLE = {Severity.ERROR: "bold red", Severity.WARNING: "bold yellow",
                    Severity.INFO: "bold blue"}
 _TAG_START = re.compile(r"</?[A-Za-z_][\w:.-]*")
+#: Characters of a source line shown under a finding.
+_SOURCE_WINDOW = 200
 
 
 class SourceCache:
@@ -88,6 +90,54 @@ def render_lines(results: Sequence, failures: Sequence = (), *, cwd: str | None 
             lines.extend(found)
             lines.append([])
     lines.append(summary_line(results, failures))
+    lines.extend(checked_lines(results, show))
+    return lines
+
+
+#: Variants listed by name under the summary; more are counted.
+_LISTED_VARIANTS = 10
+
+
+def variant_text(result: Any, show: Callable[[str], str] = display_path) -> str:
+    """A linted variant by name and arguments: `urdf/a.urdf.xacro hand:=false` (or
+    `(default arguments)`)."""
+    args = getattr(result, "args", ()) or getattr(result, "variant", ())
+    shown = " ".join(f"{name}:={value}" for name, value in args)
+    return f"{show(result.target)} {shown or '(default arguments)'}"
+
+
+def suppressed_counts(results: Sequence) -> dict[str, int]:
+    """Findings hidden, by mechanism: inline comments, config ignores, baseline."""
+    return {"inline": sum(getattr(r, "suppressed", 0) for r in results),
+            "config": sum(getattr(r, "suppressed_by_config", 0) for r in results),
+            "baseline": sum(getattr(r, "suppressed_by_baseline", 0) for r in results)}
+
+
+def files_read(results: Sequence) -> int:
+    """The number of distinct files the lints read (descriptions, includes, configs,
+    package.xml, meshes)."""
+    return len(set().union(*(getattr(r, "files_read", frozenset()) for r in results)))
+
+
+def checked_lines(results: Sequence, show: Callable[[str], str] = display_path) -> list[Line]:
+    """What was checked, under the summary: the variants linted (when a file was linted
+    with arguments or more than once), the findings suppressed and the files read."""
+    if not results:
+        return []
+    lines: list[Line] = []
+    several = len({r.target for r in results}) < len(results)
+    if several or any(getattr(r, "args", ()) or getattr(r, "variant", ()) for r in results):
+        lines.append([(f"Linted {_plural(len(results), 'variant')}:", "")])
+        lines.extend([(f"  {variant_text(r, show)}", "")] for r in results[:_LISTED_VARIANTS])
+        if len(results) > _LISTED_VARIANTS:
+            lines.append([(f"  ... {len(results) - _LISTED_VARIANTS} more", "")])
+    counts = suppressed_counts(results)
+    words = {"inline": "inline comments", "config": "config ignores", "baseline": "baseline"}
+    text = f"Read {_plural(files_read(results), 'file')}"
+    if sum(counts.values()):
+        text += (f"; {_plural(sum(counts.values()), 'finding')} suppressed ("
+                 + ", ".join(f"{n} by {words[k]}" for k, n in counts.items() if n) + ")")
+    lines.append([(text + ".", "dim")])
     return lines
 
 
@@ -136,7 +186,10 @@ def summary_line(results: Sequence, failures: Sequence = ()) -> Line:
     if parts:
         line = [(f"Found {', '.join(parts)} in {_plural(len(files), 'file')}.", "bold")]
     elif results:
-        line = [(f"All checks passed ({_plural(len(results), 'file')} checked).", "bold green")]
+        targets = len({r.target for r in results})
+        checked = _plural(targets, 'file') if targets == len(results) else \
+            f"{_plural(len(results), 'variant')} of {_plural(targets, 'file')}"
+        line = [(f"All checks passed ({checked} checked).", "bold green")]
     else:
         line = []
     if failures:
@@ -191,15 +244,30 @@ def _context_lines(span: Span | None, stack: Iterable[Span], show: Callable[[str
     width = len(str(span.line)) if span and span.line else 1
     gutter = " " * width
     if source is not None:
-        start, length = _underline(source, span.col)
+        source, col = _clip_source(source.rstrip(), span.col)
+        start, length = _underline(source, col)
         lines.append([(f"{gutter} |", "blue")])
-        lines.append([(f"{span.line} | ", "blue"), (source.rstrip().expandtabs(4), "")])
+        lines.append([(f"{span.line} | ", "blue"), (source.expandtabs(4), "")])
         lines.append([(f"{gutter} | ", "blue"), (" " * start, ""), ("^" * length, "bold red")])
     for site, repeats in _runs(stack):
         again = f" ({repeats} nested calls from this line)" if repeats > 1 else ""
         lines.append([(f"{gutter} = ", "blue"),
                       (f"in macro called from {_location(site, show, site.path)}{again}", "")])
     return lines
+
+
+def _clip_source(source: str, col: int) -> tuple[str, int]:
+    """A long source line cut to a window around `col` (1-based), and the column within it,
+    so that a report grows with the number of findings, not with the length of their lines."""
+    if len(source) <= _SOURCE_WINDOW:
+        return source, col
+    start = max(0, col - 1 - _SOURCE_WINDOW // 2)
+    window = source[start:start + _SOURCE_WINDOW]
+    if start:
+        window = "..." + window
+    if start + _SOURCE_WINDOW < len(source):
+        window += "..."
+    return window, (col - start + (3 if start else 0)) if col else 0
 
 
 def _runs(stack: Iterable[Span]) -> list[tuple[Span, int]]:
