@@ -54,6 +54,16 @@ print(f"{robot.name}: {len(robot.links)} links, {len(robot.joints)} joints")
 print("joint types:", dict(Counter(joint.type for joint in robot.joints)))
 head = robot.link("head_link")
 print("head_link is written at", head.where.span)
+robot  # noqa: B018 (a notebook shows a short summary: counts, mass, DoF, the top of the tree)
+
+# %% [markdown]
+# `robotdesc.to_urdf` gives the expanded URDF as plain text, as `robotdesc expand` writes
+# it (without robotdesc's internal provenance attributes).
+
+# %%
+urdf = robotdesc.to_urdf(str(ENGINEER))
+(OUT / "engineer.urdf").write_text(urdf, encoding="utf-8")
+print(urdf.splitlines()[0], f"... ({len(urdf.splitlines())} lines)")
 
 # %% [markdown]
 # ## 2. Lint
@@ -79,14 +89,12 @@ result  # noqa: B018 (displayed by the notebook)
 # one.
 
 # %%
-from robotdesc.config import MeshSettings
-from robotdesc.inertia.table import inertia_table, render_table
-from robotdesc.mesh.context import MeshContext
-
-meshes = MeshContext.for_file(robot, str(ENGINEER), MeshSettings())
-rows = inertia_table(robot, meshes)
-worst = sorted((r for r in rows if r.error is not None), key=lambda r: -r.error)[:6]
-print(render_table(worst))
+inertia = robotdesc.mesh_inertia(str(ENGINEER))
+worst = sorted((r for r in inertia.rows if r.error is not None), key=lambda r: -r.error)[:6]
+for row in worst:
+    print(f"{row.link:24s} mass {row.declared_mass:.3f} kg   moments differ by "
+          f"{100 * row.error:.0f} %" + (f"   ({row.cause})" if row.cause else ""))
+inertia  # noqa: B018 (a notebook shows the whole table)
 
 # %% [markdown]
 # ### The equivalent inertia boxes
@@ -94,21 +102,25 @@ print(render_table(worst))
 # Gazebo's inertia view draws, for each link, the box of uniform density with the link's
 # mass and principal moments. A box much larger than the link's geometry means an inertia
 # too large for the body (the Engineer paper's Fig. 5 shows one three times the size of the
-# head). Here are the boxes of the links above next to the size of their geometry.
+# head). Here are the boxes of the links above: from the declared moments, and from the
+# moments of the geometry at the same mass.
+
 
 # %%
-from robotdesc.view.inertia_box import inertia_box
+def box_size(mass, moments):
+    """Edges (m) of the uniform box with this mass (kg) and principal moments (kg m^2)."""
+    a, b, c = moments
+    return sorted(max(0.0, 6 * (p + q - r) / mass) ** 0.5 for p, q, r in
+                  ((b, c, a), (a, c, b), (a, b, c)))
+
 
 for row in worst:
-    link = robot.link(row.link)
-    box = inertia_box(link.name, link.inertial)
-    geometry = meshes.link_geometry(link)
-    if box is None or geometry.bounds is None:
+    if not (row.declared_mass and row.declared_moments and row.derived_moments):
         continue
-    low, high = geometry.bounds
-    extent = sorted(h - l for l, h in zip(low, high))
-    print(f"{link.name:24s} box {' x '.join(f'{1000 * e:.0f}' for e in sorted(box.size))} mm"
-          f"   geometry {' x '.join(f'{1000 * e:.0f}' for e in extent)} mm")
+    declared = box_size(row.declared_mass, row.declared_moments)
+    geometry = box_size(row.declared_mass, row.derived_moments)
+    print(f"{row.link:24s} box {' x '.join(f'{1000 * e:.0f}' for e in declared)} mm"
+          f"   geometry {' x '.join(f'{1000 * e:.0f}' for e in geometry)} mm")
 
 # %% [markdown]
 # The same boxes in 3D, with the links that have findings in red. `robotdesc.show` returns a
@@ -134,9 +146,7 @@ view  # noqa: B018 (displayed by the notebook)
 # %%
 collision = robotdesc.generate_collision(
     robot, "hull", links=["head_link", "left_flipper_link"], jobs=2)
-from robotdesc.collision.report import render_table as collision_table
-
-print(collision_table(collision))
+print(collision.totals())
 collision  # noqa: B018 (a notebook shows the per-link table)
 
 # %% [markdown]
@@ -148,13 +158,8 @@ collision  # noqa: B018 (a notebook shows the per-link table)
 # `robotdesc report engineer.urdf.xacro -o report.html [--collision hull]`.
 
 # %%
-from robotdesc.report.html import render_html_report
-from robotdesc.report.html_data import ReportData, collect_report
-
-data = collect_report(result)
-data = ReportData(data.result, data.scene, data.inertia_rows, collision, data.notes)
 report = OUT / "report.html"
-report.write_text(render_html_report(data), encoding="utf-8")
+report.write_text(robotdesc.html_report(result, collision), encoding="utf-8")
 print(f"wrote {report} ({report.stat().st_size / 1e6:.1f} MB)")
 for outcome in collision.outcomes:
     r = outcome.report

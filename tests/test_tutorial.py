@@ -9,6 +9,16 @@ from pathlib import Path
 
 import pytest
 
+OFFLINE_GUARD = """
+import socket
+_connect = socket.socket.connect
+def connect(self, address):
+    if self.family in (socket.AF_INET, socket.AF_INET6):
+        raise OSError("network access in the tutorial: " + repr(address))
+    return _connect(self, address)
+socket.socket.connect = connect
+"""
+
 REPO = Path(__file__).resolve().parents[1]
 TUTORIAL = REPO / "docs" / "tutorial.py"
 
@@ -41,14 +51,84 @@ def test_tutorial_runs_offline(tmp_path: Path) -> None:
     env = {**os.environ, "PYTHONPATH": path, "ROBOTDESC_TUTORIAL_OUT": str(tmp_path),
            "ROBOTDESC_CACHE_DIR": str(tmp_path / "cache"), "MPLBACKEND": "Agg"}
     done = subprocess.run([sys.executable, "-c", OFFLINE_RUNNER, str(TUTORIAL)],
-                          capture_output=True, check=False, text=True, env=env, cwd=tmp_path, timeout=900)
+                          capture_output=True, check=False, text=True, env=env, cwd=tmp_path,
+                          timeout=900)
     assert done.returncode == 0, done.stderr[-4000:]
     out = done.stdout
     assert "engineer: 246 links" in out
     assert "0 error, 0 warning, 0 info>" in out  # the bundled description is lint-clean
-    assert "left_main_wheel_0_link" in out and " box " in out and "geometry" in out
+    assert " box " in out and "geometry" in out
     assert "head_link" in out and "-> hull" in out
     for page in ("engineer.html", "report.html"):
         text = (tmp_path / page).read_text(encoding="utf-8")
         assert text.startswith("<!DOCTYPE html>") and "data-robotdesc-scene" in text
     assert "Generated collision geometry" in (tmp_path / "report.html").read_text("utf-8")
+
+
+def notebook_cells(text: str) -> list[tuple[str, str]]:
+    """The cells of a jupytext percent script as (kind, source): "# %%" starts a code cell,
+    "# %% [markdown]" a markdown cell (its "# " prefixes removed); the header is dropped."""
+    cells: list[tuple[str, list[str]]] = []
+    for line in text.splitlines():
+        if line.startswith("# %%"):
+            cells.append(("markdown" if "[markdown]" in line else "code", []))
+        elif cells:
+            cells[-1][1].append(line)
+    out = []
+    for kind, lines in cells:
+        if kind == "markdown":
+            lines = [line[2:] if line.startswith("# ") else line.lstrip("#") for line in lines]
+        source = "\n".join(lines).strip("\n")
+        if source:
+            out.append((kind, source))
+    return out
+
+
+def test_tutorial_cells_use_public_api_only() -> None:
+    code = "\n".join(source for kind, source in notebook_cells(TUTORIAL.read_text("utf-8"))
+                     if kind == "code")
+    assert "import robotdesc" in code
+    assert "from robotdesc" not in code and "import robotdesc." not in code
+    import re
+
+    import robotdesc
+
+    used = set(re.findall(r"robotdesc\.([A-Za-z_]\w*)", code))
+    assert used and used <= set(robotdesc.__all__), used - set(robotdesc.__all__)
+
+
+@pytest.mark.slow
+def test_tutorial_runs_as_a_notebook(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    nbformat = pytest.importorskip("nbformat")
+    nbclient = pytest.importorskip("nbclient")
+    cells = notebook_cells(TUTORIAL.read_text(encoding="utf-8"))
+    assert len(cells) >= 10
+    notebook = nbformat.v4.new_notebook()
+    notebook.cells = [nbformat.v4.new_code_cell(OFFLINE_GUARD)] + [
+        nbformat.v4.new_markdown_cell(source) if kind == "markdown"
+        else nbformat.v4.new_code_cell(source) for kind, source in cells]
+    for name, value in {"ROBOTDESC_TUTORIAL_OUT": str(tmp_path / "out"),
+                        "ROBOTDESC_CACHE_DIR": str(tmp_path / "cache"), "MPLBACKEND": "Agg",
+                        "PYTHONPATH": os.pathsep.join(filter(None, [
+                            str(REPO / "src"), os.environ.get("PYTHONPATH")]))}.items():
+        monkeypatch.setenv(name, value)
+    client = nbclient.NotebookClient(notebook, timeout=900, kernel_name="python3",
+                                     resources={"metadata": {"path": str(REPO / "docs")}})
+    client.execute()
+
+    def outputs(cell) -> str:
+        parts = []
+        for output in cell.get("outputs", []):
+            parts.append(output.get("text", ""))
+            parts.extend(str(v) for v in output.get("data", {}).values())
+        return "\n".join(parts)
+
+    everything = "\n".join(outputs(cell) for cell in notebook.cells)
+    assert "engineer: 246 links" in everything
+    summary = next(outputs(cell) for cell in notebook.cells
+                   if "robotdesc-robot" in outputs(cell))
+    assert len(summary) < 20_000 and "DoF" in summary and "base_footprint" in summary
+    assert "_rd_src" not in (tmp_path / "out" / "engineer.urdf").read_text("utf-8")
+    assert "0 error, 0 warning, 0 info>" in everything
+    assert " box " in everything and "-> hull" in everything
+    assert "Generated collision geometry" in (tmp_path / "out" / "report.html").read_text("utf-8")

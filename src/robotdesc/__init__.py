@@ -6,6 +6,8 @@ The public API::
     robot = robotdesc.load("robot.urdf.xacro", args={"prefix": "left_"})
     expanded = robotdesc.expand("robot.urdf.xacro")      # URDF bytes + where each element came from
     result = robotdesc.lint("robot.urdf.xacro")          # diagnostics, like `robotdesc lint`
+    text = robotdesc.to_urdf("robot.urdf.xacro")         # clean URDF text, as `robotdesc expand`
+    page = robotdesc.html_report(result)                 # the page of `robotdesc report`
 
 Heavy modules (xacro, lxml, the rules) are imported on first use, so `import robotdesc` is cheap.
 """
@@ -14,6 +16,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Mapping, Sequence
 
+from robotdesc._version import __version__
+
 if TYPE_CHECKING:  # pragma: no cover
     from robotdesc.config import Config
     from robotdesc.expansion.result import Expanded
@@ -21,9 +25,9 @@ if TYPE_CHECKING:  # pragma: no cover
     from robotdesc.linting.result import LintResult
     from robotdesc.model.elements import Robot
 
-__version__ = "0.1.0"
 
-__all__ = ["__version__", "expand", "generate_collision", "lint", "load", "mesh_inertia", "show"]
+__all__ = ["__version__", "expand", "generate_collision", "html_report", "lint", "load",
+           "mesh_inertia", "show", "to_urdf"]
 
 
 def generate_collision(robot: "Robot", method: str = "decimate", **options):
@@ -36,6 +40,56 @@ def generate_collision(robot: "Robot", method: str = "decimate", **options):
     from robotdesc.collision.generate import generate_collision as run
 
     return run(robot, method, **options)
+
+
+def to_urdf(source: "str | Expanded", args: Mapping[str, str] | None = None, *,
+            package_paths: Sequence[str] = ()) -> str:
+    """Clean URDF text, as `robotdesc expand` writes it: indented, with a banner, and
+    without robotdesc's internal provenance attributes.
+
+    Args:
+        source: a description file (expanded first), or an `Expanded` from `expand`.
+        args: xacro arguments (with a file only).
+        package_paths: directories to search for ROS packages first (with a file only).
+
+    Raises:
+        robotdesc.errors.InputError: the file could not be expanded.
+    """
+    from robotdesc.model.write import urdf_text
+
+    expanded = expand(source, args, package_paths=package_paths) \
+        if isinstance(source, str) else source
+    return urdf_text(expanded.xml, expanded.source).decode("utf-8")
+
+
+def html_report(result: "LintResult", collision=None, *,
+                joint_values: Mapping[str, float] | None = None, view: bool = True,
+                package_paths: Sequence[str] = ()) -> str:
+    """The self-contained HTML page of `robotdesc report` for a `lint` result.
+
+    Args:
+        result: what `robotdesc.lint` returned (it carries the parsed robot).
+        collision: a `CollisionResult` from `generate_collision` to compare, if any.
+        joint_values: the configuration of the 3D view (rad or m).
+        view: include the 3D view.
+        package_paths: directories to search for ROS packages first.
+
+    Returns:
+        The page (write it with `Path(...).write_text(page, encoding="utf-8")`).
+    """
+    import dataclasses
+
+    from robotdesc.config import discover_config
+    from robotdesc.report.html import render_html_report
+    from robotdesc.report.html_data import collect_report
+
+    config = discover_config(result.target)
+    data = collect_report(result, package_paths=package_paths,
+                          package_map=tuple(config.packages), joint_values=joint_values,
+                          mesh_settings=config.meshes, view=view)
+    if collision is not None:
+        data = dataclasses.replace(data, collision=collision)
+    return render_html_report(data)
 
 
 def expand(path: str, args: Mapping[str, str] | None = None, *,

@@ -15,6 +15,8 @@ import sys
 from dataclasses import dataclass
 from typing import Any, Sequence
 
+from robotdesc._version import __version__
+
 EXIT_OK, EXIT_FINDINGS, EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
 REPORT_FORMATS = ("text", "json", "sarif", "junit", "github", "gitlab")
 BUG_REPORT_URL = "https://github.com/robotdesc/robotdesc/issues"
@@ -79,6 +81,9 @@ def build_parser() -> argparse.ArgumentParser:
     common = argparse.ArgumentParser(add_help=False)
     common.add_argument("-v", "--verbose", action="count", default=0,
                         help="log package resolution and progress to stderr (twice: debug)")
+    common.add_argument("-q", "--quiet", action="store_true",
+                        help="no progress on stderr (shown for long runs: a bar on a "
+                             "terminal, a line every few seconds otherwise)")
     expansion = argparse.ArgumentParser(add_help=False)
     expansion.add_argument("--package-path", action="append", default=[], metavar="DIR",
                            help="a folder holding ROS packages (or one package); repeatable; "
@@ -168,7 +173,6 @@ def _run_lint(ns: argparse.Namespace) -> int:
     from robotdesc.config import load_config
     from robotdesc.diagnostics import Severity
     from robotdesc.errors import InputError, UsageError
-    from robotdesc.linting.parallel import lint_targets
     from robotdesc.linting.result import LintFailure, LintResult
     from robotdesc.linting.targets import discover_targets
 
@@ -199,8 +203,9 @@ def _run_lint(ns: argparse.Namespace) -> int:
         if ns.diff:
             return run_fixes(ns, targets, args, options, select, ignore)
         run_fixes(ns, targets, args, options, select, ignore)
-    outcomes = lint_targets(targets, args=args, expand_options=options, select=select,
-                            ignore=ignore, jobs=ns.jobs)
+    outcomes = _lint_with_progress(ns, targets, args, options, select, ignore)
+    outcomes = [dataclasses.replace(o, args=tuple({**dict(t.args), **args}.items()))
+                if isinstance(o, LintResult) else o for t, o in zip(targets, outcomes)]
     results = [o for o in outcomes if isinstance(o, LintResult)]
     failures += [o for o in outcomes if isinstance(o, LintFailure)]
     fail_on = {t.path: Severity.parse(ns.fail_on) if ns.fail_on else t.config.fail_on
@@ -214,6 +219,26 @@ def _run_lint(ns: argparse.Namespace) -> int:
             _write_input_error(sys.stderr, failure.error, failure.target)
     _write_report(ns, results, failures, min(fail_on.values(), default=Severity.INFO), inputs)
     return EXIT_INPUT if failures else EXIT_FINDINGS if failed else EXIT_OK
+
+
+def _lint_with_progress(ns: argparse.Namespace, targets: list, args: dict, options: Any,
+                        select: Any, ignore: list) -> list:
+    """`lint_targets` with progress on stderr: target by target in this process, or as one
+    step with worker processes."""
+    from robotdesc.linting.parallel import effective_jobs, lint_targets
+    from robotdesc.progress import progress_for
+
+    with progress_for(ns, "lint", total=len(targets), unit="targets") as progress:
+        if min(effective_jobs(ns.jobs), len(targets)) > 1:
+            progress.update(0, detail=f"{effective_jobs(ns.jobs)} worker processes")
+            return lint_targets(targets, args=args, expand_options=options, select=select,
+                                ignore=ignore, jobs=ns.jobs)
+        outcomes = []
+        for number, target in enumerate(targets):
+            progress.update(number, detail=target.name())
+            outcomes += lint_targets([target], args=args, expand_options=options,
+                                     select=select, ignore=ignore, jobs=1)
+        return outcomes
 
 
 def _check_lint_outputs(ns: argparse.Namespace, targets: list) -> None:
@@ -281,6 +306,10 @@ def _apply_baseline(ns: argparse.Namespace, results: list, inputs: Any) -> list:
         return results
     outcome = apply_baseline(results, read_baseline(path),
                              os.path.dirname(os.path.abspath(path)))
+    kept = [dataclasses.replace(after, suppressed_by_baseline=after.suppressed_by_baseline
+                                + len(before.diagnostics) - len(after.diagnostics))
+            for before, after in zip(results, outcome.results)]
+    outcome = dataclasses.replace(outcome, results=tuple(kept))
     if outcome.matched or outcome.stale:
         sys.stderr.write(f"robotdesc: {outcome.matched} finding(s) hidden by the baseline "
                          f"{path}" + (f"; {outcome.stale} recorded finding(s) no longer occur "
@@ -290,8 +319,8 @@ def _apply_baseline(ns: argparse.Namespace, results: list, inputs: Any) -> list:
 
 
 def _run_expand(ns: argparse.Namespace) -> int:
-    from robotdesc.linting.inputs import description_inputs, expansion_inputs
     from robotdesc.expansion import expand_file
+    from robotdesc.linting.inputs import description_inputs, expansion_inputs
     from robotdesc.model.write import urdf_text
     from robotdesc.output import check_output
 
@@ -312,14 +341,12 @@ def _run_expand(ns: argparse.Namespace) -> int:
 
 
 def _run_rules(ns: argparse.Namespace) -> int:
+    from robotdesc.report.table import render_table
     from robotdesc.rules.registry import all_rules
 
     rows = [(r.code, r.name, r.family, str(r.severity), r.summary) for r in all_rules()]
     header = ("CODE", "NAME", "FAMILY", "SEVERITY", "SUMMARY")
-    widths = [max(len(row[i]) for row in (header, *rows)) for i in range(4)]
-    for row in (header, *rows):
-        cells = [cell.ljust(width) for cell, width in zip(row, widths)]
-        sys.stdout.write("  ".join([*cells, row[4]]).rstrip() + "\n")
+    sys.stdout.write(render_table(header, rows, max_cell=30))
     return EXIT_OK
 
 
@@ -555,7 +582,6 @@ def _silence_stdout() -> None:
 
 
 def _version() -> str:
-    from robotdesc import __version__
 
     return __version__
 

@@ -142,7 +142,7 @@ def test_plots_of_nothing_are_none_and_plots_are_plain_svg() -> None:
     assert html_plots.faces_plot([("a", 0, 0)]) is None
     svg = html_plots.faces_plot([("arm", 1200, 12), ("base", 12, 0)], total=5)
     assert svg.startswith("<svg") and svg.rstrip().endswith("</svg>")
-    assert "Triangles per link (5 links with geometry)" in svg and ">arm<" in svg
+    assert "Triangles per link: 2 of the 5 links with geometry" in svg and ">arm<" in svg
     assert "<metadata>" not in svg and "xlink:href=\"http" not in svg
 
 

@@ -23,8 +23,12 @@ def test_json_report_fields(sample) -> None:
     jsonschema.validate(document, JSON_SCHEMA)
     assert document["schema_version"] == SCHEMA_VERSION == 1
     assert document["tool"] == {"name": "robotdesc", "version": robotdesc.__version__}
-    assert document["summary"] == {"files_checked": 1, "files_not_checked": 1, "error": 1,
-                                   "warning": 1, "info": 1, "suppressed": 2}
+    summary = document["summary"]
+    assert summary.pop("variants") == [{"target": results[0].target, "args": {},
+                                        "variant": {}}]
+    assert summary == {"files_checked": 1, "files_not_checked": 1, "error": 1,
+                       "warning": 1, "info": 1, "suppressed": 2, "files_read": 1,
+                       "suppressed_by": {"inline": 2, "config": 0, "baseline": 0}}
     first = document["diagnostics"][0]
     assert first == {
         "code": "J101", "name": "revolute-without-limit", "severity": "error",

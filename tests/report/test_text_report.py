@@ -38,6 +38,7 @@ def test_text_report_snapshot(sample) -> None:
         "robot.urdf.xacro: X001 [info] note\n"
         "\n"
         "Found 1 error, 1 warning, 1 info in 2 files. 1 file could not be checked.\n"
+        "Read 1 file; 2 findings suppressed (2 by inline comments).\n"
     )
 
 
@@ -74,3 +75,26 @@ def test_colour_output_uses_ansi_codes_and_same_text(sample) -> None:
     assert "\x1b[" in coloured.getvalue()
     stripped = re.sub(r"\x1b\[[0-9;]*m", "", coloured.getvalue())
     assert stripped == plain.getvalue()
+
+
+def test_summary_names_variants_suppressions_and_files_read(tmp_path) -> None:
+    import dataclasses
+
+    from robotdesc.linting.result import LintResult
+
+    target = str(tmp_path / "robot.urdf.xacro")
+    base = LintResult(target, (), suppressed=260, config_path=None)
+    results = [base, dataclasses.replace(base, args=(("wheels", "18"),), suppressed=0,
+                                         suppressed_by_baseline=3),
+               dataclasses.replace(base, args=(("gripper", "false"),), suppressed=0,
+                                   suppressed_by_config=1)]
+    text = render_text(results, cwd=str(tmp_path))
+    assert text.splitlines() == [
+        "All checks passed (3 variants of 1 file checked).",
+        "Linted 3 variants:",
+        "  robot.urdf.xacro (default arguments)",
+        "  robot.urdf.xacro wheels:=18",
+        "  robot.urdf.xacro gripper:=false",
+        "Read 1 file; 264 findings suppressed (260 by inline comments, 1 by config ignores, "
+        "3 by baseline).",
+    ]

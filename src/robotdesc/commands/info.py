@@ -70,11 +70,15 @@ def run_info(ns: argparse.Namespace) -> int:
     """The handler: expand, build with Pinocchio, print; exit 0 (2 on unusable input)."""
     from robotdesc.kinematics.info import robot_info
     from robotdesc.kinematics.optional import import_pinocchio
+    from robotdesc.progress import progress_for
 
     import_pinocchio("robotdesc info")
     positions = parse_positions(ns.q)
-    robot, mesh_path, _, _ = load_robot(ns, "info")
-    info = robot_info(robot, mesh_path, positions or None)
+    with progress_for(ns, "info") as bar:
+        bar.update(0, detail="expanding and parsing")
+        robot, mesh_path, _, _ = load_robot(ns, "info")
+        bar.update(0, detail=f"building the model of {len(robot.links)} links (Pinocchio)")
+        info = robot_info(robot, mesh_path, positions or None)
     if ns.format == "json":
         sys.stdout.write(json.dumps(info.to_dict(), indent=2) + "\n")
     else:

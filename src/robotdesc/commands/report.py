@@ -43,18 +43,25 @@ def run_report(ns: argparse.Namespace) -> int:
     from robotdesc.config import discover_config, load_config
     from robotdesc.report.html import render_html_report
     from robotdesc.output import write_output
+    from robotdesc.progress import progress_for
     from robotdesc.report.html_data import collect_report
     from robotdesc.view.forward import parse_assignments
 
     started = time.perf_counter()
     values = parse_assignments(ns.q)
-    _, result, options, inputs = load_target(ns, lint=True)
-    config = load_config(ns.config) if ns.config else discover_config(result.target)
-    data = collect_report(result, package_paths=options.package_paths,
-                          package_map=options.package_map, joint_values=values,
-                          max_faces=ns.max_faces, mesh_settings=config.meshes,
-                          collision_method=ns.collision, jobs=ns.jobs, view=not ns.no_view)
-    page = render_html_report(data).encode("utf-8")
+    with progress_for(ns, "report") as bar:
+        bar.update(0, detail="linting")
+        _, result, options, inputs = load_target(ns, lint=True)
+        config = load_config(ns.config) if ns.config else discover_config(result.target)
+        bar.update(0, detail="3D scene, inertia" + (f", collision ({ns.collision})"
+                                                     if ns.collision else ""))
+        data = collect_report(result, package_paths=options.package_paths,
+                              package_map=options.package_map, joint_values=values,
+                              max_faces=ns.max_faces, mesh_settings=config.meshes,
+                              collision_method=ns.collision, jobs=ns.jobs,
+                              view=not ns.no_view)
+        bar.update(0, detail="rendering the page")
+        page = render_html_report(data).encode("utf-8")
     write_output(ns.output, page, inputs)
     sys.stderr.write(f"robotdesc: wrote {ns.output} ({len(page) / 1e6:.2f} MB, "
                      f"{len(result.diagnostics)} findings; "

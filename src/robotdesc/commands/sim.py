@@ -72,6 +72,7 @@ def run_sim(ns: argparse.Namespace) -> int:
     """The handler: load, settle, time, print; exit 0 pass, 1 fail, 2 input error."""
     from robotdesc.cli import single_input
     from robotdesc.errors import InputError, UsageError
+    from robotdesc.progress import progress_for
     from robotdesc.sim.backend import import_mujoco
 
     single = single_input(ns, "sim")
@@ -93,28 +94,33 @@ def run_sim(ns: argparse.Namespace) -> int:
     from robotdesc.sim.run import SimOptions, compare_rtf, settle_robot
     from robotdesc.sim.settle import SettleOptions
 
-    expand_options = single.options
-    loaded = load_sim_input(single.source, single.args, expand_options)
-    hold = HoldOptions(mode="passive" if ns.passive else "position")
-    options = SimOptions(settle=SettleOptions(seconds=ns.seconds, hold=hold),
-                         scene=SceneOptions(drop_height=ns.drop_height,
-                                            self_collision=ns.self_collision),
-                         collision=ns.collision, generate_method=ns.method)
-    package_map = tuple(expand_options.package_map)
-    report = settle_robot(loaded.robot, loaded.meshes, options, package_map)
-    write_report(sys.stdout, report, options)
-    if not ns.no_rtf and report.check("model") is None:
-        rtf_options = dataclasses.replace(options, settle=dataclasses.replace(
-            options.settle, seconds=min(ns.seconds, 1.0)))
-        try:
-            comparison = compare_rtf(loaded.robot, loaded.meshes, rtf_options,
-                                     package_map=package_map, min_wall=0.2)
-        except (ImportError, ValueError, InputError) as error:  # generation unavailable
-            comparison = compare_rtf(loaded.robot, loaded.meshes, rtf_options, candidate=None,
-                                     package_map=package_map, min_wall=0.2)
-            sys.stdout.write(f"  (generated collision unavailable: {error})\n")
-        write_rtf(sys.stdout, comparison)
-    return 0 if report.passed else 1
+    with progress_for(ns, "sim", unit="s simulated") as bar:
+        bar.update(0, detail="loading the description and meshes")
+        expand_options = single.options
+        loaded = load_sim_input(single.source, single.args, expand_options)
+        hold = HoldOptions(mode="passive" if ns.passive else "position")
+        options = SimOptions(settle=SettleOptions(seconds=ns.seconds, hold=hold),
+                             scene=SceneOptions(drop_height=ns.drop_height,
+                                                self_collision=ns.self_collision),
+                             collision=ns.collision, generate_method=ns.method)
+        package_map = tuple(expand_options.package_map)
+        bar.update(0, detail="settle test")
+        report = settle_robot(loaded.robot, loaded.meshes, options, package_map)
+        write_report(sys.stdout, report, options)
+        if not ns.no_rtf and report.check("model") is None:
+            rtf_options = dataclasses.replace(options, settle=dataclasses.replace(
+                options.settle, seconds=min(ns.seconds, 1.0)))
+            bar.update(0, detail="real-time factor: as written against generated collision")
+            try:
+                comparison = compare_rtf(loaded.robot, loaded.meshes, rtf_options,
+                                         package_map=package_map, min_wall=0.2)
+            except (ImportError, ValueError, InputError) as error:  # generation unavailable
+                comparison = compare_rtf(loaded.robot, loaded.meshes, rtf_options,
+                                         candidate=None, package_map=package_map,
+                                         min_wall=0.2)
+                sys.stdout.write(f"  (generated collision unavailable: {error})\n")
+            write_rtf(sys.stdout, comparison)
+        return 0 if report.passed else 1
 
 
 def write_report(out: TextIO, report: Any, options: Any) -> None:
@@ -153,6 +159,7 @@ def run_engine_checks(ns: argparse.Namespace, single: Any) -> int:
     import json
 
     from robotdesc.errors import UsageError
+    from robotdesc.progress import progress_for
     from robotdesc.sim.compare import compare_variants, parse_variants
     from robotdesc.sim.convert import SceneOptions
     from robotdesc.sim.engine import engine as engine_named
@@ -171,28 +178,32 @@ def run_engine_checks(ns: argparse.Namespace, single: Any) -> int:
     scene_options = SceneOptions(timestep=ns.timestep or engine.default_timestep,
                                  drop_height=ns.drop_height,
                                  self_collision=ns.self_collision)
-    progress = _progress_writer(sys.stderr, engine.name)
-    document: dict[str, Any] = {"robot": loaded.robot.name, "engine": engine.name}
-    passed = True
-    text = ns.format == "text"
-    if variants is None and not ns.drive:  # no settle test on DART yet: as-is vs generated
-        variants = ("as-is",) if ns.no_rtf else ("as-is", "generated")
-    if variants is not None:
-        comparison = compare_variants(engine, loaded.robot, loaded.meshes, variants,
-                                      scene_options, ns.seconds, hold, ns.method, package_map,
-                                      progress)
-        document["compare"] = comparison.as_dict()
-        if text:
-            write_comparison(sys.stdout, loaded.robot.name, comparison)
-    if ns.drive:
-        report = _drive(ns, single.source, loaded, engine, scene_options, hold, progress)
-        document["drive"] = report.as_dict()
-        passed = passed and report.passed
-        if text:
-            write_drive(sys.stdout, report)
-    if not text:
-        sys.stdout.write(json.dumps(document, indent=2, allow_nan=True) + "\n")
-    return 0 if passed else 1
+
+    def progress(label: str, simulated: float, total: float, wall: float) -> None:
+        bar.update(simulated, total, f"{label}, RTF {simulated / wall if wall > 0 else 0:.3g}")
+
+    with progress_for(ns, f"sim {engine.name}", unit="s simulated") as bar:
+        document: dict[str, Any] = {"robot": loaded.robot.name, "engine": engine.name}
+        passed = True
+        text = ns.format == "text"
+        if variants is None and not ns.drive:  # no settle test on DART yet: as-is vs generated
+            variants = ("as-is",) if ns.no_rtf else ("as-is", "generated")
+        if variants is not None:
+            comparison = compare_variants(engine, loaded.robot, loaded.meshes, variants,
+                                          scene_options, ns.seconds, hold, ns.method,
+                                          package_map, progress)
+            document["compare"] = comparison.as_dict()
+            if text:
+                write_comparison(sys.stdout, loaded.robot.name, comparison)
+        if ns.drive:
+            report = _drive(ns, single.source, loaded, engine, scene_options, hold, progress)
+            document["drive"] = report.as_dict()
+            passed = passed and report.passed
+            if text:
+                write_drive(sys.stdout, report)
+        if not text:
+            sys.stdout.write(json.dumps(document, indent=2, allow_nan=True) + "\n")
+        return 0 if passed else 1
 
 
 def _drive(ns: argparse.Namespace, source: str, loaded: Any, engine: Any, scene_options: Any,
@@ -230,17 +241,6 @@ def _drive(ns: argparse.Namespace, source: str, loaded: Any, engine: Any, scene_
 
 def _names(text: str) -> tuple[str, ...]:
     return tuple(part.strip() for part in text.split(",") if part.strip())
-
-
-def _progress_writer(out: TextIO, engine: str) -> Any:
-    """A progress callback writing one line per report to `out` (stderr)."""
-    def progress(label: str, simulated: float, total: float, wall: float) -> None:
-        rate = simulated / wall if wall > 0 else 0.0
-        out.write(f"robotdesc: {engine} {label}: {simulated:.2f} of {total:.2f} s simulated "
-                  f"in {wall:.0f} s (RTF {rate:.3g})\n")
-        out.flush()
-
-    return progress
 
 
 def write_comparison(out: TextIO, robot: str, comparison: Any) -> None:

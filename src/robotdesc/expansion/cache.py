@@ -20,6 +20,7 @@ import stat
 import sys
 from pathlib import Path
 
+from robotdesc._version import __version__
 from robotdesc.cache_dir import read_regular_file, write_entry
 from robotdesc.expansion.result import Expanded, MacroRecursion, ResolvedPackage, decode_input_facts
 from robotdesc.source import Span
@@ -40,7 +41,6 @@ def _versions() -> dict[str, str]:
         except metadata.PackageNotFoundError:
             return "unknown"
 
-    from robotdesc import __version__
 
     return {"xacro": version("xacro"), "robotdesc": __version__,
             "python": ".".join(map(str, sys.version_info[:3]))}
@@ -133,6 +133,7 @@ def _decode(data: dict) -> Expanded:
         files_read=tuple(data["files_read"]),
         packages=tuple(ResolvedPackage(**p) for p in data["packages"]),
         macro_recursion=tuple(MacroRecursion(m["macro"], m["depth"], span(m["defined_at"]),
-                                             span(m["called_at"])) for m in data["macro_recursion"]),
+                                             span(m["called_at"]))
+                              for m in data["macro_recursion"]),
         from_xacro=data["from_xacro"], args=tuple(tuple(a) for a in data["args"]),
         **decode_input_facts(data))

@@ -198,14 +198,12 @@ _TOO_WIDE = frozenset({"/", "/usr", "/usr/local", "/opt", "/home", "/root", "/tm
 
 def code_roots() -> tuple[str, ...]:
     """Concrete folders (and zip files) Python code is imported from; never a whole prefix."""
-    import robotdesc
-
     paths = sysconfig.get_paths()
     candidates = [paths.get(key) for key in ("stdlib", "platstdlib", "purelib", "platlib")]
     candidates += [p for p in sys.path
                    if p and os.path.isabs(p) and ("site-packages" in p or "dist-packages" in p
                                                   or os.path.isfile(p))]
-    candidates.append(os.path.dirname(os.path.abspath(robotdesc.__file__)))
+    candidates.append(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # robotdesc/
     for name in ("xacro", "yaml", "lxml"):
         module = sys.modules.get(name)
         if module is not None and getattr(module, "__file__", None):

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import html
+import os
 from dataclasses import dataclass
 from typing import Any
 
@@ -35,6 +36,10 @@ class LintResult:
             target is not a matrix variant); see robotdesc.linting.matrix.
         inputs: the files the lint read (`robotdesc.output.RunInputs`; kept when
             `expanded` and `robot` are dropped): no output of the run may replace one.
+        args: the xacro arguments the target was linted with (config target and command
+            line), as (name, value) pairs; empty: the file's defaults.
+        suppressed_by_config: findings hidden by the config's per-file ignores.
+        suppressed_by_baseline: findings hidden by a baseline file.
     """
 
     target: str
@@ -46,6 +51,21 @@ class LintResult:
     rules_run: tuple[str, ...] = ()
     variant: tuple[tuple[str, str], ...] = ()
     inputs: Any = None
+    args: tuple[tuple[str, str], ...] = ()
+    suppressed_by_config: int = 0
+    suppressed_by_baseline: int = 0
+
+    @property
+    def files_read(self) -> frozenset[str]:
+        """The files the lint read, as absolute real paths (the description, its includes,
+        the config, package.xml files and meshes when `inputs` is known; else the
+        description and what its expansion read)."""
+        if self.inputs is not None:
+            return frozenset(item.path for item in self.inputs.items)
+        paths = [self.target, self.config_path]
+        if self.expanded is not None:
+            paths += [*self.expanded.files, *self.expanded.files_read]
+        return frozenset(os.path.realpath(p) for p in paths if p)
 
     @property
     def counts(self) -> dict[Severity, int]:

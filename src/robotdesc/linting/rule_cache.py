@@ -19,6 +19,7 @@ import os
 from pathlib import Path
 from typing import Any, Iterable
 
+from robotdesc._version import __version__
 from robotdesc.cache_dir import read_regular_file, write_entry
 from robotdesc.diagnostics import Finding
 from robotdesc.source import Provenance, Span
@@ -42,7 +43,6 @@ def rule_key(rule: Any, options: Any, document: bytes, mesh_files: Iterable[str]
     findings point into it: two copies of one URDF have different keys)."""
     from importlib import metadata
 
-    from robotdesc import __version__
 
     def version(name: str) -> str:
         try:

@@ -11,26 +11,33 @@ import os
 from collections.abc import Iterable, Sequence
 from typing import Any
 
+from robotdesc._version import __version__
 from robotdesc.report.html_data import ReportData
 
 STYLE = """
 body{font:14px/1.45 system-ui,sans-serif;color:#1d1f24;margin:0;background:#fafbfc}
-main{max-width:1200px;margin:0 auto;padding:16px 24px 48px}
+main{max-width:1360px;margin:0 auto;padding:16px 20px 48px;box-sizing:border-box}
 h1{font-size:22px;margin:8px 0 2px}h2{font-size:18px;margin:28px 0 8px;border-bottom:1px solid #dde}
 .meta{color:#556;margin:0 0 8px}.counts span{display:inline-block;margin-right:12px}
 nav a{margin-right:12px}
-table{border-collapse:collapse;margin:6px 0;font-size:13px;background:#fff}
-th,td{border:1px solid #dde;padding:3px 7px;text-align:left;vertical-align:top}
+table{border-collapse:collapse;margin:6px 0;font-size:13px;background:#fff;max-width:100%}
+th,td{border:1px solid #dde;padding:3px 7px;text-align:left;vertical-align:top;
+overflow-wrap:anywhere;min-width:4.5em}
+td:first-child{min-width:12em}
 th{background:#f0f2f6;position:sticky;top:0}
 td.num{text-align:right;font-variant-numeric:tabular-nums;white-space:nowrap}
-.scroll{max-height:640px;overflow:auto;display:inline-block;max-width:100%}
+td.vec{text-align:right;font-variant-numeric:tabular-nums;overflow-wrap:normal;min-width:7em}
+td.where{font-size:12px;min-width:12em}
+.scroll{max-height:640px;overflow-y:auto;overflow-x:auto;display:block;max-width:100%}
+.scroll table{width:100%}
 .sev-error{color:#b3261e;font-weight:600}.sev-warning{color:#9a5b00;font-weight:600}
 .sev-info{color:#33669a}
 tr.bad td{background:#fff1ef}
 details{margin:4px 0;background:#fff;border:1px solid #e3e5ea;border-radius:4px}
 summary{cursor:pointer;padding:4px 8px}summary .n{color:#b3261e;font-weight:600}
 details table{margin:4px 8px 8px}
-pre{margin:2px 0;font-size:12px;background:#f5f6f8;padding:4px;overflow:auto;max-width:700px}
+pre{margin:2px 0;font-size:12px;background:#f5f6f8;padding:4px;overflow:auto;max-width:700px;
+white-space:pre-wrap;overflow-wrap:anywhere}
 .plot svg{max-width:100%;height:auto}.note{color:#556}
 .empty{color:#2e7d32}.codes{color:#667;font-size:12px;margin-left:6px}
 .groups{max-height:640px;overflow:auto;border:1px solid #e3e5ea;padding:4px;background:#fff}
@@ -103,7 +110,7 @@ def _findings_section(data: ReportData) -> str:
             fix = f"<pre>{_e(d.fix)}</pre>" if d.fix else ""
             rows.append(f"<tr><td>{_e(d.code)}</td><td class=\"sev-{_e(d.severity)}\">"
                         f"{_e(d.severity)}</td><td>{_e(d.name)}</td>"
-                        f"<td>{_e(d.message)}{fix}</td><td>{_e(_location(d))}</td></tr>")
+                        f"<td>{_e(d.message)}{fix}</td><td class=where>{_e(_location(d))}</td></tr>")
         codes = sorted({d.code for d in diagnostics})
         opened = "" if many else " open"
         parts.append(f'<details{opened} data-link="{_e(name)}"><summary>{_e(name)} '
@@ -133,9 +140,10 @@ def inertia_rows_html(rows: Sequence[Any]) -> str:
             f"<tr{marked}><td>{_e(row.link)}</td>"
             f"<td>{_e(row.source or '-')}</td><td class=num>{_num(row.declared_mass)}</td>"
             f"<td class=num>{_num(row.volume)}</td><td class=num>{_num(row.density)}</td>"
-            f"<td class=num>{_vec(row.declared_com)}</td><td class=num>{_vec(row.derived_com)}</td>"
-            f"<td class=num>{_vec(row.declared_moments)}</td>"
-            f"<td class=num>{_vec(row.derived_moments)}</td>"
+            f"<td class=vec>{_vec(row.declared_com)}</td>"
+            f"<td class=vec>{_vec(row.derived_com)}</td>"
+            f"<td class=vec>{_vec(row.declared_moments)}</td>"
+            f"<td class=vec>{_vec(row.derived_moments)}</td>"
             f"<td class=num>{'-' if row.error is None else f'{100 * row.error:.1f}%'}</td>"
             f"<td>{_e(notes)}</td></tr>")
     head = ("link", "geometry", "mass kg", "volume m³", "density kg/m³", "COM declared m",
@@ -276,7 +284,6 @@ def _view_section(data: ReportData) -> str:
 
 def render_html_report(data: ReportData, title: str | None = None) -> str:
     """The complete, self-contained report page."""
-    from robotdesc import __version__
 
     result = data.result
     robot = result.robot

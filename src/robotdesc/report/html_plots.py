@@ -72,11 +72,10 @@ def moments_plot(rows: Sequence[tuple[str, Vec3, Vec3]], total: int | None = Non
     axes.set_yticks(range(len(shown)), [r[0] for r in shown], fontsize=8)
     axes.invert_yaxis()
     axes.set_xlabel("principal moment of inertia (kg·m²)")
-    count = total if total is not None else len(rows)
-    axes.set_title(f"Principal moments of {count} links, largest difference first",
-                   fontsize=10)
+    axes.set_title(_title("Principal moments", shown, total, "in the inertia table")
+                   + ", largest difference first", fontsize=10, pad=24)
     axes.grid(axis="x", which="major", color="#e4e4e4")
-    axes.legend(fontsize=8, loc="lower right")
+    _legend_above(axes)
     return _svg(figure, "moments")
 
 
@@ -100,9 +99,33 @@ def faces_plot(rows: Sequence[tuple[str, int, int]], total: int | None = None) -
     axes.set_yticks(list(ys), [r[0] for r in shown], fontsize=8)
     axes.invert_yaxis()
     axes.set_xlabel("triangles")
-    count = total if total is not None else len(rows)
-    axes.set_title(f"Triangles per link ({count} links with geometry), most visual first",
-                   fontsize=10)
+    axes.set_title(_title("Triangles per link", shown, total, "with geometry")
+                   + ", most visual first", fontsize=10, pad=24)
     axes.grid(axis="x", which="major", color="#e4e4e4")
-    axes.legend(fontsize=8, loc="lower right")
+    _legend_above(axes)
     return _svg(figure, "faces")
+
+
+_ALIKE = re.compile(r" \(\+(\d+) alike\)$")
+
+
+def links_drawn(rows: Sequence[tuple]) -> int:
+    """The links the drawn rows stand for (a row "name (+N alike)" stands for N + 1)."""
+    return sum(1 + int(found.group(1)) if (found := _ALIKE.search(row[0])) else 1
+               for row in rows)
+
+
+def _title(what: str, shown: Sequence[tuple], total: int | None, kind: str) -> str:
+    """"Principal moments of 7 links" or "... of 7 of the 10 links compared": the count
+    is what the plot draws."""
+    drawn = links_drawn(shown)
+    rows = f" in {len(shown)} rows" if len(shown) != drawn else ""
+    if total is None or total <= drawn:
+        return f"{what}: {drawn} links{rows}"
+    return f"{what}: {drawn} of the {total} links {kind}{rows}"
+
+
+def _legend_above(axes) -> None:
+    """The legend in one line above the plot, where it covers no row."""
+    axes.legend(fontsize=8, loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=2,
+                frameon=False, borderaxespad=0.2)

@@ -10,6 +10,7 @@ import json
 import os
 from typing import Any, Sequence
 
+from robotdesc._version import __version__
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.rules.fixes import fix_applicability
 from robotdesc.source import Span
@@ -39,9 +40,21 @@ JSON_SCHEMA: dict[str, Any] = {
         "summary": {
             "type": "object",
             "required": ["files_checked", "files_not_checked", "error", "warning", "info"],
-            "properties": {key: {"type": "integer", "minimum": 0} for key in
-                           ("files_checked", "files_not_checked", "error", "warning", "info",
-                            "suppressed")},
+            "properties": {
+                **{key: {"type": "integer", "minimum": 0} for key in
+                   ("files_checked", "files_not_checked", "error", "warning", "info",
+                    "suppressed", "files_read")},
+                "suppressed_by": {"type": "object", "additionalProperties": False,
+                                  "properties": {key: {"type": "integer", "minimum": 0}
+                                                 for key in ("inline", "config", "baseline")}},
+                "variants": {"type": "array", "items": {
+                    "type": "object", "required": ["target", "args", "variant"],
+                    "properties": {
+                        "target": {"type": "string"},
+                        "args": {"type": "object", "additionalProperties": {"type": "string"}},
+                        "variant": {"type": "object",
+                                    "additionalProperties": {"type": "string"}}}}},
+            },
         },
         "diagnostics": {"type": "array", "items": {
             "type": "object",
@@ -104,7 +117,6 @@ def failure_dict(failure: Any) -> dict[str, Any]:
 
 def report_dict(results: Sequence[Any], failures: Sequence[Any] = ()) -> dict[str, Any]:
     """The whole report for `LintResult`s and `LintFailure`s."""
-    from robotdesc import __version__
 
     diagnostics = [d for result in results for d in result.diagnostics]
     variants = [dict(getattr(result, "variant", ())) for result in results
@@ -113,6 +125,16 @@ def report_dict(results: Sequence[Any], failures: Sequence[Any] = ()) -> dict[st
     summary.update({str(level): sum(d.severity == level for d in diagnostics)
                     for level in sorted(Severity, reverse=True)})
     summary["suppressed"] = sum(getattr(result, "suppressed", 0) for result in results)
+    summary["suppressed_by"] = {
+        "inline": summary["suppressed"],
+        "config": sum(getattr(result, "suppressed_by_config", 0) for result in results),
+        "baseline": sum(getattr(result, "suppressed_by_baseline", 0) for result in results)}
+    summary["files_read"] = len(set().union(*(getattr(result, "files_read", frozenset())
+                                              for result in results)))
+    summary["variants"] = [{"target": result.target,
+                            "args": dict(getattr(result, "args", ())),
+                            "variant": dict(getattr(result, "variant", ()))}
+                           for result in results]
     return {
         "schema_version": SCHEMA_VERSION,
         "tool": {"name": "robotdesc", "version": __version__},

@@ -17,6 +17,7 @@ import urllib.parse
 from pathlib import Path
 from typing import Any, Sequence
 
+from robotdesc._version import __version__
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.source import Span
 
@@ -47,7 +48,6 @@ def render_sarif(results: Sequence[Any], failures: Sequence[Any] = (), *,
 def sarif_log(results: Sequence[Any], failures: Sequence[Any] = (), *,
               rules: Sequence[Any] | None = None, cwd: str | None = None) -> dict[str, Any]:
     """The SARIF log as a JSON-ready dict."""
-    from robotdesc import __version__
 
     if rules is None:
         from robotdesc.rules.registry import all_rules

@@ -13,6 +13,8 @@ from collections import Counter
 from dataclasses import dataclass
 from typing import Any, Sequence
 
+from robotdesc.report.table import render_table
+
 
 @dataclass(frozen=True)
 class CodeCount:
@@ -49,13 +51,10 @@ def render_statistics_text(results: Sequence[Any]) -> str:
     rows = [(str(c.count), c.code, c.name, c.severity) for c in code_counts(results)]
     if not rows:
         return "No findings.\n"
-    rows.insert(0, ("count", "code", "name", "severity"))
-    widths = [max(len(row[i]) for row in rows) for i in range(3)]
-    lines = [f"{row[0].rjust(widths[0])}  {row[1].ljust(widths[1])}  "
-             f"{row[2].ljust(widths[2])}  {row[3]}" for row in rows]
-    total = sum(int(row[0]) for row in rows[1:])
-    lines.append(f"{str(total).rjust(widths[0])}  total")
-    return "\n".join(lines) + "\n"
+    total = sum(int(row[0]) for row in rows)
+    width = max(len(row[0]) for row in rows + [("count", "", "", ""), (str(total), "", "", "")])
+    text = render_table(("count", "code", "name", "severity"), rows, right=(0,), wrap=2)
+    return text + f"{str(total).rjust(width)}  total\n"
 
 
 def render_statistics_json(results: Sequence[Any]) -> str:
