@@ -96,7 +96,7 @@ def test_report_command_writes_the_page(tmp_path: Path) -> None:
     out = tmp_path / "report.html"
     done = run("report", str(urdf), "-o", str(out), "--q", "shoulder=0.2")
     assert done.returncode == 0, done.stderr
-    assert re.search(r"wrote .*report\.html \(\d\.\d\d MB, 4 findings", done.stderr)
+    assert re.search(r"wrote .*report\.html \(\d\.\d\d MB, 3 findings", done.stderr)
     page = out.read_text(encoding="utf-8")
     assert page.startswith("<!DOCTYPE html>") and "demo: robotdesc report" in page
     bad = run("report", str(urdf), "-o", str(tmp_path / "x.html"), "--q", "grip_mirror=1")
