@@ -27,3 +27,12 @@ def square(value):
 
 def raise_error(_argument):
     raise RuntimeError("boom")
+
+
+def stall_on_slow_link(task):
+    """Like run_link, but the link named 'slow' never finishes."""
+    if task.link == "slow":
+        import time
+
+        time.sleep(60)
+    return run_link(task)

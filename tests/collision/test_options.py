@@ -17,7 +17,7 @@ def test_a_decimation_parameter_leaves_coacd_and_hull_keys_alone():
 
 @pytest.mark.parametrize("method, change", [
     ("decimate", {"ratio": 0.1}), ("decimate", {"decimator": "fast-simplification"}),
-    ("coacd", {"threshold": 0.1}), ("primitive", {"primitives": ("box",)}),
+    ("coacd", {"threshold": 0.2}), ("primitive", {"primitives": ("box",)}),
     ("hull", {"target_percent": 2.0}), ("auto", {"ratio": 0.1}),
     ("auto", {"auto_order": ("hull",)}), ("coacd", {"seed": 3})])
 def test_a_parameter_the_method_reads_changes_its_key(method, change):

@@ -18,7 +18,8 @@ from robotdesc.collision.result import MeshPart
 
 def coacd_decompose(vertices: np.ndarray, faces: np.ndarray, *, threshold: float,
                     max_hulls: int, hull_vertices: int, iterations: int,
-                    preprocess_resolution: int, seed: int) -> list[MeshPart]:
+                    preprocess_resolution: int, seed: int, depth: int = 3,
+                    nodes: int = 20) -> list[MeshPart]:
     """Convex pieces approximating a mesh (m).
 
     Args:
@@ -26,6 +27,8 @@ def coacd_decompose(vertices: np.ndarray, faces: np.ndarray, *, threshold: float
         max_hulls: hull count limit (-1: none).
         hull_vertices: CoACD simplifies every hull to at most this many vertices.
         iterations: Monte Carlo tree search iterations.
+        depth: Monte Carlo tree search depth (cuts looked ahead).
+        nodes: Monte Carlo tree search nodes (candidate cuts per level).
         preprocess_resolution: voxel resolution of the manifold pre-processing.
         seed: random seed.
 
@@ -42,7 +45,8 @@ def coacd_decompose(vertices: np.ndarray, faces: np.ndarray, *, threshold: float
     pieces = coacd.run_coacd(mesh, threshold=float(threshold), max_convex_hull=int(max_hulls),
                              preprocess_mode="auto",
                              preprocess_resolution=int(preprocess_resolution),
-                             mcts_iterations=int(iterations), merge=True, decimate=True,
+                             mcts_iterations=int(iterations), mcts_max_depth=int(depth),
+                             mcts_nodes=int(nodes), merge=True, decimate=True,
                              max_ch_vertex=int(hull_vertices), seed=int(seed))
     parts = []
     for piece_vertices, _ in pieces:

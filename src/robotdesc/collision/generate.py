@@ -143,7 +143,8 @@ def generate_collision(robot: Robot, method: str = "decimate", *,
             code = {"crashed": "worker-crashed", "timeout": "worker-timeout"}.get(
                 outcome.kind, "worker-error")
             outcome = _failed(task.link, options.method, task.key,
-                              Finding(code, "error", outcome.message))
+                              Finding(code, "error", _failure_message(task.link, outcome,
+                                                                      options)))
         elif plan.cache is not None and outcome.written:
             plan.cache.put(outcome)
         outcomes[index] = replace(outcome, key=task.key)
@@ -205,6 +206,22 @@ def _with_limits(outcome: LinkOutcome, options: CollisionOptions) -> LinkOutcome
     status = "failed" if report.status == "failed" else "warning"
     return replace(outcome, report=replace(report, status=status,
                                            findings=report.findings + extra))
+
+
+def _failure_message(link: str, failure: TaskFailure, options: CollisionOptions) -> str:
+    """What a worker's failure means for `link`; a timeout names `--mesh-timeout`."""
+    if failure.kind != "timeout":
+        return failure.message
+    limit = options.mesh_timeout_s
+    hint = ("or a larger --threshold / smaller --coacd-input-faces for a faster CoACD"
+            if options.method in ("coacd", "auto") else "or another --method")
+    return (f"link {link} did not finish within the per-link limit of {limit:g} s and was "
+            f"stopped: raise it with --mesh-timeout {_round_limit(2 * limit)} "
+            f"(mesh_timeout_s in Python), {hint}")
+
+
+def _round_limit(seconds: float) -> str:
+    return f"{max(1, round(seconds)):d}"
 
 
 def _failed(link: str, method: str, key: str | None, finding: Finding) -> LinkOutcome:

@@ -12,12 +12,18 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from robotdesc.collision.decimate import decimate, face_budget
-from robotdesc.collision.hull import NoVolumeError, convex_hull
+from robotdesc.collision.distance import SurfaceIndex
+from robotdesc.collision.hull import NoVolumeError, convex_hull, reduce_hull
 from robotdesc.collision.metrics import Fidelity, fidelity, merge_parts, union_volume
 from robotdesc.collision.options import CollisionOptions
 from robotdesc.collision.result import Finding, LinkOutcome, LinkReport, MeshPart, Part, \
     PrimitivePart
 from robotdesc.collision.tessellate import primitive_mesh
+
+#: decimate with `adapt`: a budget whose result misses the target is raised by at least
+#: this factor, and at most BUDGET_GROWTH_MAX (when far over).
+BUDGET_GROWTH = 2.0
+BUDGET_GROWTH_MAX = 4.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -66,8 +72,7 @@ def run_link(task: LinkTask) -> LinkOutcome:
         if options.method == "auto":
             made, measured = _auto(vertices, faces, options)
         else:
-            made = _make(options.method, vertices, faces, options)
-            measured = _measure(vertices, faces, made.parts, options)
+            made, measured = _make_measured(options.method, vertices, faces, options)
     except NoVolumeError as error:
         return _failed(base, start, Finding("no-volume", "error", str(error)))
     except ImportError as error:
@@ -76,11 +81,6 @@ def run_link(task: LinkTask) -> LinkOutcome:
             f"{error.name or error}: reinstall robotdesc (its collision dependencies are missing)"))
     surface = [_as_mesh(p) for p in made.parts]
     findings = list(made.findings)
-    if options.method == "decimate" and measured.hausdorff_percent > options.target_percent:
-        findings.append(Finding(
-            "over-tolerance", "warning",
-            f"symmetric Hausdorff distance {measured.hausdorff_percent:.2f} % of the "
-            f"diagonal is over the target {options.target_percent:g} %"))
     errors = any(f.severity == "error" for f in findings)
     status = "failed" if errors else "warning" if findings else "ok"
     report = replace(
@@ -98,31 +98,118 @@ def run_link(task: LinkTask) -> LinkOutcome:
     return LinkOutcome(report, made.parts if not errors else (), task.key)
 
 
+def _make_measured(method: str, vertices: np.ndarray, faces: np.ndarray,
+                   options: CollisionOptions) -> tuple[_Made, Fidelity]:
+    """One method's geometry and its fidelity (decimate adapts its budget to the target)."""
+    if method == "decimate":
+        return _decimate_to_target(vertices, faces, options)
+    made = _make(method, vertices, faces, options)
+    return made, _measure(vertices, faces, made.parts, options)
+
+
+def _decimate_once(vertices: np.ndarray, faces: np.ndarray, target: int,
+                   options: CollisionOptions) -> _Made:
+    result = decimate(vertices, faces, target, options.decimator)
+    findings = []
+    for problem in result.problems:
+        severity = "error" if "opened" in problem or "no faces" in problem else "warning"
+        code = "target-not-reached" if "stopped" in problem else "broken-result"
+        findings.append(Finding(code, severity, f"decimation {problem}"))
+    detail = "; ".join((f"budget {target} faces, {result.engine}",) + result.notes)
+    return _Made("decimate", (result.part,), detail, tuple(findings))
+
+
+def _decimate_to_target(vertices: np.ndarray, faces: np.ndarray,
+                        options: CollisionOptions) -> tuple[_Made, Fidelity]:
+    """Decimate to the `ratio` budget; with `adapt` (and no fixed `faces`), raise the
+    budget (`_growth`: 2 to 4 times) and measure again while the Hausdorff distance is over
+    the target, up to the input's faces or the engine's faces per mesh. A result still over the target gets an `over-tolerance`
+    warning naming the option to change and its value."""
+    target = face_budget(len(faces), options.ratio, options.faces, options.min_faces)
+    adapt = options.adapt and options.faces is None
+    cap = max(target, min(len(faces), options.limits.max_mesh_faces))
+    budgets = [target]
+    index = SurfaceIndex(vertices, faces) if adapt else None  # shared by the measurements
+    while True:
+        made = _decimate_once(vertices, faces, budgets[-1], options)
+        measured = _measure(vertices, faces, made.parts, options, index)
+        if (not adapt or measured.hausdorff_percent <= options.target_percent
+                or budgets[-1] >= cap or any(f.severity == "error" for f in made.findings)):
+            break
+        budgets.append(min(cap, int(budgets[-1] * _growth(measured.hausdorff_percent,
+                                                          options.target_percent))))
+    percent = measured.hausdorff_percent
+    kept = len(made.parts[0].faces)
+    if len(budgets) > 1:
+        steps = " -> ".join(f"{b:,}" for b in budgets)
+        made = replace(made, detail=f"budget raised {steps} faces for the "
+                                    f"{options.target_percent:g} % target; {made.detail}")
+    if percent <= options.target_percent:
+        return made, measured
+    over = (f"symmetric Hausdorff distance {percent:.2f} % of the diagonal at {kept:,} faces "
+            f"is over the target {options.target_percent:g} %")
+    advice = f"--target {_round_up(percent)}"
+    if adapt:
+        why = (f"the {options.limits.name} limit of {options.limits.max_mesh_faces:,} faces "
+               "per mesh" if len(faces) > options.limits.max_mesh_faces
+               else "the input's faces")
+        message = (f"{over}, with the budget raised to {why}: accept {advice}, or use "
+                   "--method coacd")
+    elif options.faces is not None:
+        message = (f"{over}: raise --faces (or drop it: the budget then adapts), or "
+                   f"accept {advice}")
+    else:
+        message = f"{over}: drop --no-adapt (the budget then adapts), or accept {advice}"
+    return replace(made, findings=made.findings + (
+        Finding("over-tolerance", "warning", message),)), measured
+
+
+def _growth(percent: float, target: float) -> float:
+    """How much to raise a face budget whose result is at `percent` for `target`: twice,
+    up to four times when far over (the distance falls about as the faces rise)."""
+    return min(BUDGET_GROWTH_MAX, max(BUDGET_GROWTH, 1.2 * percent / target))
+
+
+def _round_up(percent: float) -> str:
+    """A target just above `percent`, in a tenth of a percent (as typed on the CLI)."""
+    return f"{np.ceil(percent * 10 + 1e-9) / 10:g}"
+
+
+def _fit_hulls(parts: list[MeshPart], options: CollisionOptions) -> tuple[list[MeshPart], str]:
+    """With `adapt`, each hull over the engine's vertex limit reduced to it (and a note)."""
+    limit = options.limits.max_hull_vertices
+    over = [len(p.vertices) for p in parts if len(p.vertices) > limit]
+    if not options.adapt or not over:
+        return parts, ""
+    fitted = [reduce_hull(p, limit) if len(p.vertices) > limit else p for p in parts]
+    return fitted, (f"{len(over)} hull(s) of up to {max(over):,} vertices reduced to the "
+                    f"{options.limits.name} limit of {limit}")
+
+
 def _make(method: str, vertices: np.ndarray, faces: np.ndarray,
           options: CollisionOptions) -> _Made:
+    """The geometry of hull, coacd or primitive (decimate: `_decimate_to_target`)."""
     if method == "hull":
-        return _Made("hull", (convex_hull(vertices),))
-    if method == "decimate":
-        target = face_budget(len(faces), options.ratio, options.faces, options.min_faces)
-        result = decimate(vertices, faces, target, options.decimator)
-        findings = []
-        for problem in result.problems:
-            severity = "error" if "opened" in problem or "no faces" in problem else "warning"
-            code = "target-not-reached" if "stopped" in problem else "broken-result"
-            findings.append(Finding(code, severity, f"decimation {problem}"))
-        detail = "; ".join((f"budget {target} faces, {result.engine}",) + result.notes)
-        return _Made("decimate", (result.part,), detail, tuple(findings))
+        parts, note = _fit_hulls([convex_hull(vertices)], options)
+        return _Made("hull", tuple(parts), note)
     if method == "coacd":
         from robotdesc.collision.decompose import coacd_decompose
 
-        parts = coacd_decompose(vertices, faces, threshold=options.threshold,
+        source_v, source_f, notes = vertices, faces, [f"threshold {options.threshold:g}, "
+                                                      f"seed {options.seed}"]
+        if options.coacd_input_faces and len(faces) > options.coacd_input_faces:
+            simplified = decimate(vertices, faces, options.coacd_input_faces).part
+            source_v, source_f = simplified.vertices, simplified.faces
+            notes.append(f"input decimated {len(faces):,} -> {len(source_f):,} faces first")
+        parts = coacd_decompose(source_v, source_f, threshold=options.threshold,
                                 max_hulls=options.max_hulls,
                                 hull_vertices=options.hull_vertices,
                                 iterations=options.coacd_iterations,
+                                depth=options.coacd_depth, nodes=options.coacd_nodes,
                                 preprocess_resolution=options.preprocess_resolution,
                                 seed=options.seed)
-        return _Made("coacd", tuple(parts), f"threshold {options.threshold:g}, seed "
-                                            f"{options.seed}")
+        parts, note = _fit_hulls(parts, options)
+        return _Made("coacd", tuple(parts), "; ".join(notes + ([note] if note else [])))
     if method == "primitive":
         from robotdesc.collision.primitives import fit_primitive
 
@@ -141,14 +228,15 @@ def _auto(vertices: np.ndarray, faces: np.ndarray,
     notes = []
     for method in options.auto_order:
         try:
-            made = _make(method, vertices, faces, options)
+            made, measured = _make_measured(method, vertices, faces, options)
         except (NoVolumeError, ImportError) as error:
             notes.append(f"{method}: {error}")
             continue
         if any(f.severity == "error" for f in made.findings):
             notes.append(f"{method}: {made.findings[0].message}")
             continue
-        measured = _measure(vertices, faces, made.parts, options)
+        made = replace(made, findings=tuple(f for f in made.findings
+                                            if f.code != "over-tolerance"))
         notes.append(f"{method} {measured.hausdorff_percent:.2f} %")
         if measured.hausdorff_percent <= options.target_percent:
             return replace(made, detail=f"auto ({', '.join(notes)}): {made.detail}"), measured
@@ -158,15 +246,16 @@ def _auto(vertices: np.ndarray, faces: np.ndarray,
     made, measured = min(tried, key=lambda pair: pair[1].hausdorff_percent)
     finding = Finding("target-not-met", "warning",
                       f"no method met the target of {options.target_percent:g} % "
-                      f"({', '.join(notes)}); kept the most faithful, {made.method}")
+                      f"({', '.join(notes)}); kept the most faithful, {made.method}: "
+                      f"accept --target {_round_up(measured.hausdorff_percent)}")
     return replace(made, detail=f"auto: {made.detail}",
                    findings=made.findings + (finding,)), measured
 
 
 def _measure(vertices: np.ndarray, faces: np.ndarray, parts: tuple[Part, ...],
-             options: CollisionOptions) -> Fidelity:
+             options: CollisionOptions, index: SurfaceIndex | None = None) -> Fidelity:
     surface = merge_parts([_as_mesh(p) for p in parts])
-    return fidelity((vertices, faces), surface, options.samples, options.seed)
+    return fidelity((vertices, faces), surface, options.samples, options.seed, index)
 
 
 def _as_mesh(part: Part) -> MeshPart:

@@ -72,12 +72,17 @@ def merge_parts(parts: list[MeshPart]) -> tuple[np.ndarray, np.ndarray]:
 
 
 def fidelity(source: tuple[np.ndarray, np.ndarray], output: tuple[np.ndarray, np.ndarray],
-             samples: int = 2000, seed: int = 0) -> Fidelity:
-    """Distances between the input surface `source` and `output` ((vertices, faces) each)."""
+             samples: int = 2000, seed: int = 0,
+             source_index: SurfaceIndex | None = None) -> Fidelity:
+    """Distances between the input surface `source` and `output` ((vertices, faces) each).
+
+    `source_index`, the `SurfaceIndex` of `source` when the caller measures several outputs
+    of one input (it is built here otherwise)."""
     sv, sf = source
     ov, of = output
     forward = SurfaceIndex(ov, of).distances(sample_surface(sv, sf, samples, seed))
-    backward = SurfaceIndex(sv, sf).distances(sample_surface(ov, of, samples, seed + 1))
+    index = source_index if source_index is not None else SurfaceIndex(sv, sf)
+    backward = index.distances(sample_surface(ov, of, samples, seed + 1))
     diagonal = float(np.linalg.norm(sv.max(axis=0) - sv.min(axis=0)))
     return Fidelity(float(forward.mean()), float(forward.max()), float(backward.mean()),
                     float(backward.max()), diagonal)

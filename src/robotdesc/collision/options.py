@@ -24,11 +24,21 @@ class CollisionOptions:
         min_faces: decimate: never aim below this many faces.
         decimator: decimate: the engine tried first, "meshoptimizer" or
             "fast-simplification" (the other is the fallback; see decimate.py).
+        adapt: meet the target and the engine limits by default: decimate raises a
+            `ratio` budget step by step (doubling, up to the input's faces or the engine's
+            faces per mesh) until the target is met; hull and coacd reduce a hull over the
+            engine's vertices per hull. Off: results over either are findings only.
         threshold: coacd: concavity threshold (smaller: more, tighter hulls).
         max_hulls: coacd: hull count per link (-1: no limit).
         hull_vertices: coacd: vertices per hull (CoACD simplifies each hull to this).
-        coacd_iterations: coacd: Monte Carlo tree search iterations (its default 150).
+        coacd_iterations: coacd: Monte Carlo tree search iterations (CoACD's own default
+            150; 40 here, see docs/collision.md for the Engineer's timings).
+        coacd_depth: coacd: Monte Carlo tree search depth (CoACD's 3; 2 here).
+        coacd_nodes: coacd: Monte Carlo tree search nodes per level (CoACD's 20; 10 here).
         preprocess_resolution: coacd: voxel resolution of its manifold pre-processing.
+        coacd_input_faces: coacd: a mesh over this many faces is decimated to it before
+            CoACD runs (its time grows with the faces; fidelity is measured against the
+            original); 0: never.
         seed: coacd: random seed (fixed, so outputs are reproducible).
         primitives: primitive: the kinds tried, among PRIMITIVE_KINDS.
         target_percent: fidelity target: symmetric Hausdorff distance as % of the link's
@@ -46,11 +56,15 @@ class CollisionOptions:
     faces: int | None = None
     min_faces: int = 64
     decimator: str = "meshoptimizer"
-    threshold: float = 0.05
+    adapt: bool = True
+    threshold: float = 0.1
     max_hulls: int = 16
     hull_vertices: int = 64
-    coacd_iterations: int = 150
-    preprocess_resolution: int = 50
+    coacd_iterations: int = 40
+    coacd_depth: int = 2
+    coacd_nodes: int = 10
+    preprocess_resolution: int = 30
+    coacd_input_faces: int = 2000
     seed: int = 0
     primitives: tuple[str, ...] = PRIMITIVE_KINDS
     target_percent: float = 1.0
@@ -79,6 +93,12 @@ class CollisionOptions:
             raise ValueError(f"threshold must be in (0, 1], got {self.threshold}")
         if self.max_hulls == 0 or self.max_hulls < -1:
             raise ValueError(f"max hulls must be positive or -1, got {self.max_hulls}")
+        if min(self.coacd_iterations, self.coacd_depth, self.coacd_nodes,
+               self.preprocess_resolution) < 1:
+            raise ValueError("coacd iterations, depth, nodes and resolution must be positive")
+        if self.coacd_input_faces < 0 or 0 < self.coacd_input_faces < 4:
+            raise ValueError(f"coacd input faces must be 0 or at least 4, got "
+                             f"{self.coacd_input_faces}")
         if self.hull_vertices < 4:
             raise ValueError(f"hull vertices must be at least 4, got {self.hull_vertices}")
         unknown = [k for k in self.primitives if k not in PRIMITIVE_KINDS]
@@ -99,6 +119,9 @@ class CollisionOptions:
         manifest key): the common ones and those of the method (all of them for auto), so
         that, say, a new decimation ratio leaves CoACD outputs current."""
         data = asdict(self)
+        data.pop("limits")
+        data["mesh_face_limit"] = self.limits.max_mesh_faces
+        data["hull_vertex_limit"] = self.limits.max_hull_vertices
         data["primitives"] = list(self.primitives)
         data["auto_order"] = list(self.auto_order)
         if self.method == "auto":
@@ -106,17 +129,22 @@ class CollisionOptions:
             relevant.add("auto_order")
         else:
             relevant = set(_METHOD_FIELDS.get(self.method, ()))
+        if not self.adapt or (self.method == "decimate" and self.faces is not None):
+            relevant -= {"adapt", *_ADAPT_FIELDS}  # nothing adapts: the key of before
         return {name: value for name, value in data.items()
                 if name in _COMMON_FIELDS or name in relevant}
 
 
 #: Fields every method's result depends on (seed: CoACD and the fidelity sampling).
 _COMMON_FIELDS = ("method", "seed", "target_percent", "samples", "source")
-#: The fields each method reads.
+#: The engine limits `adapt` fits results to (in a key only when something adapts).
+_ADAPT_FIELDS = ("mesh_face_limit", "hull_vertex_limit")
+#: The fields each method reads (the engine limits too, when `adapt` fits results to them).
 _METHOD_FIELDS = {
-    "decimate": ("ratio", "faces", "min_faces", "decimator"),
-    "hull": (),
-    "coacd": ("threshold", "max_hulls", "hull_vertices", "coacd_iterations",
-              "preprocess_resolution"),
+    "decimate": ("ratio", "faces", "min_faces", "decimator", "adapt", "mesh_face_limit"),
+    "hull": ("adapt", "hull_vertex_limit"),
+    "coacd": ("threshold", "max_hulls", "hull_vertices", "coacd_iterations", "coacd_depth",
+              "coacd_nodes", "preprocess_resolution", "coacd_input_faces", "adapt",
+              "hull_vertex_limit"),
     "primitive": ("primitives",),
 }

@@ -166,8 +166,3 @@ class CollisionResult:
                 "links": [o.report.to_dict() for o in self.outcomes],
                 "totals": self.totals(), "failed": self.failed}
 
-    def _repr_html_(self) -> str:
-        """The per-link table as HTML (Jupyter's display)."""
-        from robotdesc.report.html import collision_result_html
-
-        return collision_result_html(self)

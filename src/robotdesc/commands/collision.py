@@ -40,12 +40,21 @@ def register(subparsers, *, common, expansion) -> None:
                         default="meshoptimizer",
                         help="decimate: engine tried first; the other is the fallback "
                              "(default meshoptimizer)")
-    parser.add_argument("--threshold", type=float, default=0.05,
-                        help="coacd: concavity threshold (default 0.05)")
+    parser.add_argument("--no-adapt", dest="adapt", action="store_false",
+                        help="keep the --ratio budget and hulls as made: results over "
+                             "--target or the engine's limits are findings only (default: "
+                             "decimate raises its budget until --target is met, hulls are "
+                             "reduced to the engine's vertex limit)")
+    parser.add_argument("--threshold", type=float, default=0.1,
+                        help="coacd: concavity threshold (default 0.1)")
     parser.add_argument("--max-hulls", type=int, default=16,
                         help="coacd: hulls per link, -1 for no limit (default 16)")
     parser.add_argument("--hull-vertices", type=int, default=64,
                         help="coacd: vertices per hull (default 64)")
+    parser.add_argument("--coacd-input-faces", type=int, default=2000, metavar="N",
+                        help="coacd: decimate a larger mesh to N faces before CoACD (faster; "
+                             "fidelity is measured against the original); 0: never "
+                             "(default 2000)")
     parser.add_argument("--seed", type=int, default=0, help="coacd: random seed (default 0)")
     parser.add_argument("--primitives", default="box,cylinder,sphere,capsule",
                         help="primitive: kinds tried (comma-separated)")
@@ -93,7 +102,7 @@ def run(ns: argparse.Namespace) -> int:
     try:
         options = CollisionOptions(
             method=ns.method, ratio=ns.ratio, faces=ns.faces, decimator=ns.decimator,
-            threshold=ns.threshold,
+            adapt=ns.adapt, threshold=ns.threshold, coacd_input_faces=ns.coacd_input_faces,
             max_hulls=ns.max_hulls, hull_vertices=ns.hull_vertices, seed=ns.seed,
             primitives=tuple(p.strip() for p in ns.primitives.split(",") if p.strip()),
             target_percent=ns.target, source=ns.source, mesh_timeout_s=ns.mesh_timeout,
@@ -125,13 +134,14 @@ def run(ns: argparse.Namespace) -> int:
         return EXIT_FINDINGS if stale else EXIT_OK
 
     from robotdesc.collision.generate import generate_collision
+    from robotdesc.progress import progress_for
 
     try:
-        with _progress(sys.stderr) as progress:
+        with progress_for(ns, "collision", unit="links") as bar:
             result = generate_collision(robot, options=options, method=options.method,
                                         package_paths=package_paths, package_map=package_map,
                                         links=ns.link, jobs=ns.jobs,
-                                        use_cache=not ns.no_cache, progress=progress,
+                                        use_cache=not ns.no_cache, progress=bar.update,
                                         scheduler=ns.scheduler,
                                         allow_absolute_paths=allow_absolute)
     except ValueError as error:
@@ -158,34 +168,3 @@ def run(ns: argparse.Namespace) -> int:
 
         sys.stdout.write(render_table(result))
     return EXIT_FINDINGS if result.failed else EXIT_OK
-
-
-class _progress:
-    """A rich progress bar on a terminal; nothing otherwise. Yields the callback."""
-
-    def __init__(self, stream) -> None:
-        self.stream = stream
-        self.bar = None
-        self.task = None
-
-    def __enter__(self):
-        if not getattr(self.stream, "isatty", lambda: False)():
-            return None
-        from rich.console import Console
-        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, \
-            TimeElapsedColumn
-
-        self.bar = Progress(TextColumn("collision"), BarColumn(), MofNCompleteColumn(),
-                            TimeElapsedColumn(), TextColumn("{task.description}"),
-                            console=Console(file=self.stream), transient=True)
-        self.bar.__enter__()
-        self.task = self.bar.add_task("", total=None)
-
-        def update(done: int, total: int, link: str) -> None:
-            self.bar.update(self.task, completed=done, total=total, description=link)
-
-        return update
-
-    def __exit__(self, *exc) -> None:
-        if self.bar is not None:
-            self.bar.__exit__(*exc)
