@@ -7,7 +7,6 @@ import subprocess
 import sys
 
 import pytest
-
 from support import REPO, example_robot_urdfs
 
 HAND = REPO / "tests" / "fixtures" / "macro_twice" / "urdf" / "hand.urdf.xacro"

@@ -51,7 +51,7 @@ def test_lint_returns_a_result(urdf: Path) -> None:
     result = robotdesc.lint(str(urdf))
     assert result.diagnostics, "a joint to a missing link must be reported"
     assert any(d.where.span.line == 4 for d in result.diagnostics)
-    assert result.to_dict()["summary"]["files_checked"] == 1
+    assert robotdesc.json_report(result)["summary"]["files_checked"] == 1
     assert robotdesc.lint(str(urdf), ignore=["ALL"]).diagnostics == ()
 
 
@@ -90,5 +90,26 @@ def test_mesh_inertia_table_renders_and_serialises() -> None:
     assert table.source == "collision"
     head = table.row("head_link")
     assert head is not None and head.declared_mass > 0 and head.error is not None and head.error < 0.01
-    assert "<table" in table._repr_html_() and "head_link" in str(table)
+    from robotdesc.report.notebook import html_of
+
+    assert "<table" in html_of(table) and "head_link" in str(table)
     assert table.to_dict()["links"][0]["link"] == table.rows[0].link
+
+
+def test_a_notebook_shows_results_as_the_reports_tables() -> None:
+    """The renderers register with IPython's display system (results know no HTML)."""
+    pytest.importorskip("IPython")
+    from IPython.core.interactiveshell import InteractiveShell
+
+    from robotdesc.collision import CollisionOptions, CollisionResult
+    from robotdesc.model.elements import Robot
+    from robotdesc.report import notebook
+
+    shell = InteractiveShell.instance()
+    try:
+        notebook.register()
+        result = CollisionResult(Robot("r"), (), CollisionOptions(), 1.0)
+        data, _ = shell.display_formatter.format(result)
+        assert data["text/html"] == notebook.html_of(result)
+    finally:
+        InteractiveShell.clear_instance()

@@ -11,8 +11,8 @@ import sys
 from pathlib import Path
 
 import pytest
-
 from mesh.builders import box_triangles, write_binary_stl
+
 from robotdesc.cache_dir import cache_root, read_regular_file
 from robotdesc.diagnostics import Finding
 from robotdesc.expansion import ExpandOptions, expand_file

@@ -14,9 +14,15 @@ Heavy modules (xacro, lxml, the rules) are imported on first use, so `import rob
 
 from __future__ import annotations
 
+import sys
 from typing import TYPE_CHECKING, Mapping, Sequence
 
 from robotdesc._version import __version__
+
+if "IPython" in sys.modules:  # a notebook: results render as the report's tables
+    from robotdesc.report import notebook as _notebook
+
+    _notebook.register()
 
 if TYPE_CHECKING:  # pragma: no cover
     from robotdesc.config import Config
@@ -26,7 +32,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from robotdesc.model.elements import Robot
 
 
-__all__ = ["__version__", "expand", "generate_collision", "html_report", "lint", "load",
+__all__ = ["__version__", "expand", "generate_collision", "html_report", "json_report", "lint", "load",
            "mesh_inertia", "show", "to_urdf"]
 
 
@@ -60,6 +66,13 @@ def to_urdf(source: "str | Expanded", args: Mapping[str, str] | None = None, *,
     expanded = expand(source, args, package_paths=package_paths) \
         if isinstance(source, str) else source
     return urdf_text(expanded.xml, expanded.source).decode("utf-8")
+
+
+def json_report(*results: "LintResult") -> dict:
+    """The document of `robotdesc lint --format json` for `lint` results, as a dict."""
+    from robotdesc.report.json import report_dict
+
+    return report_dict(results)
 
 
 def html_report(result: "LintResult", collision=None, *,
@@ -179,7 +192,8 @@ def lint(path: str, args: Mapping[str, str] | None = None, *,
         trusted: lift the sandbox limits (only for your own files).
 
     Returns:
-        A `LintResult` (`.diagnostics`, `.counts`, `.to_dict()`; renders as a table in Jupyter).
+        A `LintResult` (`.diagnostics`, `.counts`; renders as a table in Jupyter;
+        `robotdesc.json_report(result)` gives the JSON document).
     """
     from robotdesc.config import load_config
     from robotdesc.expansion import ExpandOptions

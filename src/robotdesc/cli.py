@@ -342,7 +342,7 @@ def _run_expand(ns: argparse.Namespace) -> int:
 
 def _run_rules(ns: argparse.Namespace) -> int:
     from robotdesc.report.table import render_table
-    from robotdesc.rules.registry import all_rules
+    from robotdesc.rules.catalog import all_rules
 
     rows = [(r.code, r.name, r.family, str(r.severity), r.summary) for r in all_rules()]
     header = ("CODE", "NAME", "FAMILY", "SEVERITY", "SUMMARY")
@@ -352,7 +352,7 @@ def _run_rules(ns: argparse.Namespace) -> int:
 
 def _run_rule(ns: argparse.Namespace) -> int:
     from robotdesc.errors import UsageError
-    from robotdesc.rules.registry import get_rule
+    from robotdesc.rules.catalog import get_rule
 
     found = get_rule(ns.code)
     if found is None:
@@ -460,7 +460,7 @@ def _selectors(values: Sequence[str], flag: str) -> list[str]:
     """Comma-separated selectors from repeatable flags, checked against the registry."""
     from robotdesc.errors import UsageError
     from robotdesc.linting.select import unknown_selectors
-    from robotdesc.rules.registry import all_rules
+    from robotdesc.rules.catalog import all_rules
 
     selectors = [part.strip() for value in values for part in value.split(",") if part.strip()]
     if selectors:

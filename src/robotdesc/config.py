@@ -48,44 +48,14 @@ from typing import Any, Mapping, Sequence
 from robotdesc.diagnostics import Severity
 from robotdesc.errors import ConfigError
 from robotdesc.linting.select import find_rule, unknown_selectors
+from robotdesc.mesh.settings import MeshSettings
+from robotdesc.rules.catalog import all_rules
 from robotdesc.source import Span
 
 CONFIG_FILES = ("robotdesc.toml", "pyproject.toml")
 VCS_MARKERS = (".git", ".hg", ".svn")
 _KEYS = ("select", "ignore", "per_file_ignores", "rules", "severity", "fail_on", "packages",
          "args", "meshes", "targets")
-
-
-@dataclass(frozen=True)
-class MeshSettings:
-    """How meshes are read and what the mesh and inertia rules expect.
-
-    Attributes:
-        inertia_source: the geometry that mesh-derived mass properties come from:
-            "collision" (default) or "visual"; the other is used when a link has none.
-        expected_mass: the robot's expected total mass (kg), checked by B101; None: unchecked.
-        mass_tolerance: relative tolerance of the total mass against `expected_mass`.
-        allow_absolute_paths: accept `file://` URIs and absolute mesh paths (off: such a
-            description works only on the machine that wrote it).
-        collision_triangle_budget: the most triangles one collision mesh should have.
-        cache: keep mesh summaries in the mesh cache (docs/meshes.md); off: recompute.
-    """
-
-    inertia_source: typing.Literal["collision", "visual"] = "collision"
-    expected_mass: float | None = None
-    mass_tolerance: float = 0.05
-    allow_absolute_paths: bool = False
-    collision_triangle_budget: int = 10_000
-    cache: bool = True
-
-    def __post_init__(self) -> None:
-        if self.expected_mass is not None and not self.expected_mass > 0:
-            raise ValueError(f"expected-mass must be positive, got {self.expected_mass}")
-        if not 0 <= self.mass_tolerance < 1:
-            raise ValueError(f"mass-tolerance must be in [0, 1), got {self.mass_tolerance}")
-        if self.collision_triangle_budget < 1:
-            raise ValueError("collision-triangle-budget must be at least 1, got "
-                             f"{self.collision_triangle_budget}")
 
 
 @dataclass(frozen=True)
@@ -210,8 +180,6 @@ def config_from_mapping(table: Mapping[str, Any], path: str, *, text: str = "",
     """
     where = _Locator(path, text, prefix)
     if rules is None:
-        from robotdesc.rules.registry import all_rules
-
         rules = all_rules()
     known = list(rules)
 

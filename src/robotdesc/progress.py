@@ -62,8 +62,7 @@ class Progress:
             return self
         if _is_terminal(self.stream):
             from rich.console import Console
-            from rich.progress import (BarColumn, MofNCompleteColumn, TextColumn,
-                                       TimeElapsedColumn)
+            from rich.progress import BarColumn, MofNCompleteColumn, TextColumn, TimeElapsedColumn
             from rich.progress import Progress as Bar
 
             self._bar = Bar(TextColumn(self.label), BarColumn(), MofNCompleteColumn(),

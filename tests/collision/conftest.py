@@ -7,7 +7,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 from support import example_robot_data_dir
 
 ROBOTS = example_robot_data_dir()

@@ -7,10 +7,10 @@ import os
 from pathlib import Path
 
 import numpy as np
+from mesh.builders import write_binary_stl
 
 import robotdesc
 from collision.conftest import box_soup, write_urdf
-from mesh.builders import write_binary_stl
 from robotdesc.cli import main
 from robotdesc.collision import generate as generate_module
 from robotdesc.collision.worker import TaskFailure, run_tasks

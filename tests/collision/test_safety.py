@@ -13,8 +13,8 @@ import subprocess
 from pathlib import Path
 
 import pytest
-
 from mesh.builders import box_triangles, write_binary_stl
+
 from robotdesc.cli import main
 from robotdesc.collision.manifest import MANIFEST_NAME, sha256_file
 

@@ -7,8 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from robotdesc.expansion import ExpandOptions, expand_file
-from robotdesc.expansion import runner
+from robotdesc.expansion import ExpandOptions, expand_file, runner
 
 WS = Path(__file__).parent / "fixtures" / "ws"
 

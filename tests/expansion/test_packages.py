@@ -4,8 +4,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from robotdesc.expansion.packages import (PackageResolver, PackageResolverConfig, crawl_packages,
-                                       split_package_uri, workspace_root)
+from robotdesc.expansion.packages import (
+    PackageResolver,
+    PackageResolverConfig,
+    crawl_packages,
+    split_package_uri,
+    workspace_root,
+)
 
 WS = Path(__file__).parent / "fixtures" / "ws"
 ROBOT = WS / "src" / "robot_pkg" / "urdf" / "robot.urdf.xacro"

@@ -10,6 +10,7 @@ import random
 from pathlib import Path
 
 import pytest
+
 from fuzz.campaign import ENGINEER, Seed, campaign, example_robot_data_share, seeds
 from fuzz.harness import prepare_case, run_case
 from fuzz.mutate import DESCRIPTION_MUTATIONS, bad_mesh, mutate

@@ -11,6 +11,7 @@ import struct
 from pathlib import Path
 
 import pytest
+
 from fuzz.harness import run_in_process
 
 FIXTURES = Path(__file__).parent / "fixtures"

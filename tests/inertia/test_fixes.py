@@ -7,11 +7,11 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-
 from mesh.builders import box_triangles, write_binary_stl
-from robotdesc.config import MeshSettings
+
 from robotdesc.inertia.suggest import select_suggestions, suggest_for_link
 from robotdesc.mesh.context import MeshContext
+from robotdesc.mesh.settings import MeshSettings
 from robotdesc.model.parse import parse_urdf
 
 SETTINGS = MeshSettings(cache=False)

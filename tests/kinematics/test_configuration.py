@@ -1,13 +1,12 @@
 import math
 
+from kinematics.robots import ARM, robot
 from robotdesc.kinematics.configuration import (
     default_configuration,
     follow_mimics,
     joint_range,
     zero_configuration,
 )
-
-from kinematics.robots import ARM, robot
 
 
 def test_default_is_zero_inside_the_limits_else_the_middle() -> None:

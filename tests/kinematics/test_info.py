@@ -6,11 +6,11 @@ import pytest
 
 pytest.importorskip("pinocchio")
 
-from robotdesc.errors import UsageError  # noqa: E402
-from robotdesc.kinematics.info import robot_info  # noqa: E402
+from support import REPO  # noqa: E402
 
 from kinematics.robots import ARM, robot  # noqa: E402
-from support import REPO  # noqa: E402
+from robotdesc.errors import UsageError  # noqa: E402
+from robotdesc.kinematics.info import robot_info  # noqa: E402
 
 
 def test_counts_mass_and_centre_of_mass() -> None:

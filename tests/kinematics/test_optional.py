@@ -3,10 +3,10 @@ import sys
 
 import pytest
 
-from robotdesc.kinematics.optional import KinematicsUnavailable, import_pinocchio
-from robotdesc.rules.registry import RuleContext, get_rule, run_rule
-
 from kinematics.robots import ARM, robot
+from robotdesc.kinematics.optional import KinematicsUnavailable, import_pinocchio
+from robotdesc.rules.catalog import get_rule
+from robotdesc.rules.registry import RuleContext, run_rule
 
 
 def test_missing_pinocchio_is_an_input_error_that_says_how_to_install(monkeypatch) -> None:

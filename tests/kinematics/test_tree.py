@@ -1,6 +1,5 @@
-from robotdesc.kinematics import tree
-
 from kinematics.robots import ARM, robot
+from robotdesc.kinematics import tree
 
 
 def test_adjacency_passes_through_links_without_geometry() -> None:

@@ -6,8 +6,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-
 from mesh.builders import box_triangles, write_binary_stl
+
 from robotdesc.cli import main
 from robotdesc.linting.driver import lint_file
 from robotdesc.linting.fix import plan_fixes, write_fixes

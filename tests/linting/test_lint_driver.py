@@ -9,12 +9,13 @@ from pathlib import Path
 
 import pytest
 
+import robotdesc
 from robotdesc.config import Config
 from robotdesc.diagnostics import Finding, Severity
 from robotdesc.errors import XmlSyntaxError
 from robotdesc.linting.driver import lint_file
 from robotdesc.linting.result import RuleCrashed
-from robotdesc.rules import registry
+from robotdesc.rules import catalog
 from robotdesc.rules.registry import Rule
 
 URDF = """<robot name="r">
@@ -72,7 +73,7 @@ RULES = [
 @pytest.fixture
 def rules(monkeypatch: pytest.MonkeyPatch) -> list[Rule]:
     active = list(RULES)
-    monkeypatch.setattr(registry, "all_rules", lambda: list(active))
+    monkeypatch.setattr(catalog, "all_rules", lambda: list(active))
     return active
 
 
@@ -163,7 +164,7 @@ def test_result_api(rules, urdf: Path) -> None:
     assert repr(result) == f"<LintResult {str(urdf)!r}: 1 error, 0 warning, 0 info>"
     table = result._repr_html_()
     assert table.startswith("<table>") and "<td>T001</td>" in table and "joint loud" in table
-    document = result.to_dict()
+    document = robotdesc.json_report(result)
     assert document["summary"]["error"] == 1
     assert document["diagnostics"][0]["element"] == "joint:loud"
     assert result.robot.name == "r" and result.expanded.source == str(urdf)

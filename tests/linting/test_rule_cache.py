@@ -6,7 +6,7 @@ import os
 
 from robotdesc.diagnostics import Finding
 from robotdesc.linting import rule_cache
-from robotdesc.rules.registry import get_rule
+from robotdesc.rules.catalog import get_rule
 from robotdesc.source import Provenance, Span
 
 OVERLAP = b"""<robot name="two">

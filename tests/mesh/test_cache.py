@@ -7,8 +7,8 @@ from pathlib import Path
 import pytest
 
 from robotdesc.mesh import load as load_module
+from robotdesc.mesh.analyze import analyze_mesh_file
 from robotdesc.mesh.cache import MeshCache, default_cache_dir, summary_from_json, summary_to_json
-from robotdesc.mesh.summary import analyze_mesh_file
 from robotdesc.mesh.validate import MeshError, MeshErrorKind
 
 from .builders import box_triangles, write_binary_stl

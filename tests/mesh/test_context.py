@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from robotdesc.config import MeshSettings
 from robotdesc.mesh.context import MeshContext
+from robotdesc.mesh.settings import MeshSettings
 from robotdesc.model.parse import parse_urdf
 
 from .builders import box_triangles, write_binary_stl

@@ -6,8 +6,9 @@ import math
 
 import pytest
 
+from robotdesc.mesh.analyze import analyze_mesh_file
 from robotdesc.mesh.load import FORMATS
-from robotdesc.mesh.summary import MassMethod, analyze_mesh_file
+from robotdesc.mesh.summary import MassMethod
 from robotdesc.mesh.validate import MeshError
 
 

@@ -5,10 +5,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from robotdesc.spatial import rpy_rotation
 from robotdesc.mesh.mass import volume_integrals
 from robotdesc.mesh.primitives import box_properties
 from robotdesc.mesh.properties import MassProperties, combine, moved_bounds
+from robotdesc.spatial import rpy_rotation
 
 from .builders import box_triangles
 

@@ -7,8 +7,9 @@ import math
 import numpy as np
 import pytest
 
+from robotdesc.mesh.analyze import analyze_mesh_file
 from robotdesc.mesh.load import LoadedMesh
-from robotdesc.mesh.summary import MassMethod, analyze_mesh_file, summarize
+from robotdesc.mesh.summary import MassMethod, summarize
 
 from .builders import box_triangles, write_binary_stl
 

@@ -13,10 +13,10 @@ import dataclasses
 import os
 from pathlib import Path
 
-from .report_samples import build_sample
-
 from robotdesc.diagnostics import Severity
 from robotdesc.rules.registry import Rule
+
+from .report_samples import build_sample
 
 DATA = Path(__file__).resolve().parent / "data"
 

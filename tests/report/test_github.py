@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import pytest
-from .ci_samples import build_ci_sample
 
 from robotdesc.report.github import (
     escape_data,
@@ -11,6 +10,8 @@ from robotdesc.report.github import (
     render_github,
     workflow_command,
 )
+
+from .ci_samples import build_ci_sample
 
 
 @pytest.fixture

@@ -5,9 +5,10 @@ from __future__ import annotations
 import json
 
 import pytest
-from .ci_samples import build_ci_sample, check_snapshot, normalise
 
 from robotdesc.report.gitlab import INPUT_ERROR_CHECK, render_gitlab
+
+from .ci_samples import build_ci_sample, check_snapshot, normalise
 
 
 @pytest.fixture

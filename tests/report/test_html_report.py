@@ -159,4 +159,6 @@ def test_collision_result_as_html() -> None:
     html = collision_result_html(result)
     assert "<td>head &lt;link&gt;</td><td>hull</td><td>warning</td>" in html
     assert "<td class=num>4.00%</td>" in html and "warning: too many" in html
-    assert result._repr_html_() == html  # Jupyter shows the same table
+    from robotdesc.report.notebook import html_of
+
+    assert html_of(result) == html  # Jupyter shows the same table

@@ -6,10 +6,11 @@ import json
 
 import jsonschema
 import pytest
-from .report_samples import build_sample
 
 import robotdesc
 from robotdesc.report.json import JSON_SCHEMA, SCHEMA_VERSION, render_json
+
+from .report_samples import build_sample
 
 
 @pytest.fixture

@@ -4,11 +4,12 @@ target and one case per rule, with failures carrying the messages."""
 from __future__ import annotations
 
 import pytest
-from .ci_samples import build_ci_sample, check_snapshot, normalise
 from junitparser import Error, Failure, JUnitXml
 
 from robotdesc.diagnostics import Severity
 from robotdesc.report.junit import CHECK_CASE, render_junit
+
+from .ci_samples import build_ci_sample, check_snapshot, normalise
 
 
 @pytest.fixture

@@ -9,11 +9,12 @@ from pathlib import Path
 
 import jsonschema
 import pytest
-from .ci_samples import DATA, RULES, build_ci_sample, check_snapshot, normalise
 
 from robotdesc.report.sarif import render_sarif, rule_descriptor, sarif_log
+from robotdesc.rules.catalog import all_rules
 from robotdesc.rules.docs import render_rules_markdown
-from robotdesc.rules.registry import all_rules
+
+from .ci_samples import DATA, RULES, build_ci_sample, check_snapshot, normalise
 
 REPO = Path(__file__).resolve().parents[2]
 SCHEMA = json.loads((DATA / "sarif-schema-2.1.0.json").read_text(encoding="utf-8"))

@@ -4,13 +4,13 @@ from __future__ import annotations
 
 import json
 
-from .ci_samples import build_ci_sample
-
 from robotdesc.report.statistics import (
     code_counts,
     render_statistics_json,
     render_statistics_text,
 )
+
+from .ci_samples import build_ci_sample
 
 
 def test_counts_per_code_most_first(tmp_path) -> None:

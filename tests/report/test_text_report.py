@@ -6,10 +6,11 @@ import io
 import re
 
 import pytest
-from .report_samples import build_sample
 
 from robotdesc.linting.result import LintResult
 from robotdesc.report.text import render_failure, render_text, summary_line, write_text
+
+from .report_samples import build_sample
 
 
 @pytest.fixture

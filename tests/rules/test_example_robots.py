@@ -11,8 +11,8 @@ from support import example_robot_data_dir, example_robot_urdfs
 
 from robotdesc.diagnostics import Finding
 from robotdesc.model.parse import parse_urdf
-from robotdesc.rules.registry import RuleContext, all_rules, run_rule
-
+from robotdesc.rules.catalog import all_rules
+from robotdesc.rules.registry import RuleContext, run_rule
 
 ROBOTS = example_robot_data_dir()
 URDFS = example_robot_urdfs()

@@ -12,7 +12,8 @@ from pathlib import Path
 import pytest
 
 from robotdesc.model.parse import parse_urdf
-from robotdesc.rules.registry import RuleContext, all_rules, run_rule
+from robotdesc.rules.catalog import all_rules
+from robotdesc.rules.registry import RuleContext, run_rule
 
 FIXTURES = Path(__file__).parent / "fixtures"
 MARKER = re.compile(r"<!--\s*expect:\s*([A-Z0-9,\s]+?)\s*-->")

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from robotdesc.model.parse import parse_urdf
-from robotdesc.rules.registry import RuleContext, all_rules, run_rule
+from robotdesc.rules.catalog import all_rules
+from robotdesc.rules.registry import RuleContext, run_rule
 
 
 def many_wheeled_robot(wheels: int) -> bytes:

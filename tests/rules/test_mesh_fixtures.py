@@ -14,12 +14,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 from mesh.builders import box_triangles, write_binary_stl, write_collada
-from robotdesc.config import MeshSettings
+
 from robotdesc.mesh.context import MeshContext
+from robotdesc.mesh.settings import MeshSettings
 from robotdesc.model.parse import parse_urdf
-from robotdesc.rules.registry import RuleContext, all_rules, run_rule
+from robotdesc.rules.catalog import all_rules
+from robotdesc.rules.registry import RuleContext, run_rule
 
 PACKAGE = Path(__file__).parent / "mesh_fixtures" / "mesh_pkg"
 MARKER = re.compile(r"<!--\s*expect:\s*([A-Z0-9,\s]+?)\s*(?:cause:\s*(.*?))?\s*-->")

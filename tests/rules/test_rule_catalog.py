@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 
 from robotdesc.diagnostics import Severity
-from robotdesc.rules.registry import all_rules, get_rule
+from robotdesc.rules.catalog import all_rules, get_rule
 
 CODE = re.compile(r"^[A-Z]{1,3}\d{3}$")
 NAME = re.compile(r"^[a-z0-9]+(-[a-z0-9]+)*$")

@@ -9,8 +9,9 @@ from pathlib import Path
 import pytest
 
 from robotdesc.model.parse import parse_urdf
+from robotdesc.rules.catalog import all_rules
 from robotdesc.rules.docs import REGENERATE, render_rules_markdown
-from robotdesc.rules.registry import RuleContext, all_rules, run_rule
+from robotdesc.rules.registry import RuleContext, run_rule
 
 RULES_MD = Path(__file__).resolve().parents[2] / "docs" / "rules.md"
 XML_FENCE = re.compile(r"```xml\n(.*?)```", re.DOTALL)

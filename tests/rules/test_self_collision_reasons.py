@@ -8,7 +8,8 @@ from pathlib import Path
 import pytest
 
 from robotdesc.model.parse import parse_urdf
-from robotdesc.rules.registry import RuleContext, get_rule, run_rule
+from robotdesc.rules.catalog import get_rule
+from robotdesc.rules.registry import RuleContext, run_rule
 
 FIXTURE = Path(__file__).parent / "fixtures" / "kinematics" / "self_collision.urdf"
 pytest.importorskip("pinocchio")

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from robotdesc.model.elements import Robot
-from robotdesc.rules.registry import ExpansionFacts, MacroRecursion, RuleContext, get_rule
+from robotdesc.rules.catalog import get_rule
+from robotdesc.rules.registry import ExpansionFacts, MacroRecursion, RuleContext
 from robotdesc.rules.xacro import MacroRecursionOptions
 from robotdesc.source import Span
 

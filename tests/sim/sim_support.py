@@ -7,7 +7,6 @@ import dataclasses
 from pathlib import Path
 
 import pytest
-
 from support import example_robot_data_dir
 
 FIXTURES = Path(__file__).parent / "fixtures"
@@ -35,9 +34,9 @@ def load(path, expand_options=None):
 
 def with_suggested_inertias(robot):
     """`robot` with every link's inertial replaced by robotdesc's suggestion (inertia API)."""
-    from robotdesc.config import MeshSettings
     from robotdesc.inertia.suggest import suggest_inertial
     from robotdesc.mesh.context import MeshContext
+    from robotdesc.mesh.settings import MeshSettings
     from robotdesc.model.elements import Inertia, Inertial, Pose
 
     context = MeshContext(robot, MeshSettings(cache=False), lambda name: None)

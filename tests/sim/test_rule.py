@@ -7,11 +7,12 @@ import subprocess
 import sys
 
 import pytest
+from support import REPO
 
 import robotdesc
 from robotdesc.linting.select import select_rules
-from robotdesc.rules.registry import RuleContext, all_rules, get_rule, run_rule
-from support import REPO
+from robotdesc.rules.catalog import all_rules, get_rule
+from robotdesc.rules.registry import RuleContext, run_rule
 
 from .sim_support import FIXTURES
 

@@ -13,8 +13,8 @@ from robotdesc.sim.hold import HoldOptions  # noqa: E402
 from robotdesc.sim.run import SimOptions, settle_robot  # noqa: E402
 from robotdesc.sim.settle import CHECKS, SettleOptions  # noqa: E402
 
-from .sim_support import FIXTURES, load, with_suggested_inertias  # noqa: E402
 from .fixture_robots import arm_urdf  # noqa: E402
+from .sim_support import FIXTURES, load, with_suggested_inertias  # noqa: E402
 
 
 def test_fixtures_are_current() -> None:

@@ -27,10 +27,9 @@ from robotdesc.collision.sources import (
     load_link_soup,
     sources_digest,
 )
-from robotdesc.collision.worker import TaskFailure, default_jobs, run_tasks, \
-    start_workers_early
-from robotdesc.expansion.packages import package_lookup
+from robotdesc.collision.worker import TaskFailure, default_jobs, run_tasks, start_workers_early
 from robotdesc.errors import InputError
+from robotdesc.expansion.packages import package_lookup
 from robotdesc.model.elements import Robot
 
 log = logging.getLogger(__name__)

@@ -16,8 +16,14 @@ from robotdesc.collision.distance import SurfaceIndex
 from robotdesc.collision.hull import NoVolumeError, convex_hull, reduce_hull
 from robotdesc.collision.metrics import Fidelity, fidelity, merge_parts, union_volume
 from robotdesc.collision.options import CollisionOptions
-from robotdesc.collision.result import Finding, LinkOutcome, LinkReport, MeshPart, Part, \
-    PrimitivePart
+from robotdesc.collision.result import (
+    Finding,
+    LinkOutcome,
+    LinkReport,
+    MeshPart,
+    Part,
+    PrimitivePart,
+)
 from robotdesc.collision.tessellate import primitive_mesh
 
 #: decimate with `adapt`: a budget whose result misses the target is raised by at least

@@ -22,10 +22,10 @@ from typing import Callable
 import numpy as np
 
 from robotdesc.collision.tessellate import primitive_mesh, transform_points
-from robotdesc.spatial import pose_matrix
 from robotdesc.expansion.packages import enclosing_package
 from robotdesc.mesh.resolve import resolve_mesh
 from robotdesc.model.elements import MeshRef, Pose, Robot
+from robotdesc.spatial import pose_matrix
 
 
 @dataclass(frozen=True)

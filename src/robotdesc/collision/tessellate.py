@@ -8,8 +8,8 @@ import math
 import numpy as np
 
 from robotdesc.collision.result import MeshPart
-from robotdesc.spatial import pose_matrix
 from robotdesc.model.elements import Box, Capsule, Cylinder, Pose, Sphere
+from robotdesc.spatial import pose_matrix
 
 #: Segments around a round primitive's axis (the error of the chord: 0.12 % of the radius).
 SECTIONS = 64

@@ -149,8 +149,8 @@ def run(ns: argparse.Namespace) -> int:
     if writing:
         from robotdesc.collision.output import write_outputs
         from robotdesc.collision.sources import link_sources
-        from robotdesc.linting.inputs import run_inputs
         from robotdesc.expansion.packages import package_lookup
+        from robotdesc.linting.inputs import run_inputs
 
         found = link_sources(robot, options.source,
                              package_lookup(robot.source or os.getcwd(), package_paths,

@@ -41,9 +41,9 @@ def run_inertia(ns: argparse.Namespace) -> int:
     import dataclasses
 
     from robotdesc.cli import single_input
-    from robotdesc.linting.inputs import description_inputs, run_inputs
     from robotdesc.expansion import expand_file
     from robotdesc.inertia.table import inertia_table, render_table
+    from robotdesc.linting.inputs import description_inputs, run_inputs
     from robotdesc.mesh.context import MeshContext
     from robotdesc.model.parse import parse_urdf
     from robotdesc.output import check_output, write_output

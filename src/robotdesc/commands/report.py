@@ -41,9 +41,9 @@ def run_report(ns: argparse.Namespace) -> int:
 
     from robotdesc.commands.view import load_target
     from robotdesc.config import discover_config, load_config
-    from robotdesc.report.html import render_html_report
     from robotdesc.output import write_output
     from robotdesc.progress import progress_for
+    from robotdesc.report.html import render_html_report
     from robotdesc.report.html_data import collect_report
     from robotdesc.view.forward import parse_assignments
 

@@ -56,8 +56,8 @@ def load_target(ns: argparse.Namespace, lint: bool = True) -> tuple[Any, Any, An
         OutputError: `ns.output` is an input of the run.
     """
     from robotdesc.cli import single_input
-    from robotdesc.linting.inputs import description_inputs, run_inputs
     from robotdesc.errors import UsageError
+    from robotdesc.linting.inputs import description_inputs, run_inputs
     from robotdesc.output import check_output
 
     single = single_input(ns, ns.command)

@@ -11,9 +11,9 @@ import itertools
 import math
 from dataclasses import dataclass
 
-from robotdesc.spatial import Mat3, Vec3, difference, frobenius, principal_moments, rotated
 from robotdesc.mesh.properties import MassProperties
 from robotdesc.model.elements import Inertial
+from robotdesc.spatial import Mat3, Vec3, difference, frobenius, principal_moments, rotated
 
 #: Powers of ten that a unit slip of the tensor produces, and the slip that gives each.
 UNIT_SLIPS = {

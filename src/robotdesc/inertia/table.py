@@ -78,12 +78,6 @@ class InertiaTable:
     def __str__(self) -> str:
         return render_table(list(self.rows))
 
-    def _repr_html_(self) -> str:
-        from robotdesc.report.html import inertia_rows_html
-
-        return inertia_rows_html(self.rows)
-
-
 def inertia_table(robot: Robot, meshes: MeshContext, tolerance: float = 0.5) -> list[InertiaRow]:
     """One row per link that declares an inertial or has geometry."""
     from robotdesc.spatial import principal_moments

@@ -47,7 +47,8 @@ def lint_file(path: str, config: Config | None = None, *,
     """
     from robotdesc.expansion import ExpandOptions, expand_file
     from robotdesc.model.parse import parse_urdf
-    from robotdesc.rules.registry import ExpansionFacts, RuleContext, SourceDocument, all_rules
+    from robotdesc.rules.catalog import all_rules
+    from robotdesc.rules.registry import ExpansionFacts, RuleContext, SourceDocument
 
     target = os.path.abspath(path)
     config = config if config is not None else discover_config(target)

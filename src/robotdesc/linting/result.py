@@ -79,12 +79,6 @@ class LintResult:
         """Whether any diagnostic is at or above `fail_on`."""
         return any(d.severity >= fail_on for d in self.diagnostics)
 
-    def to_dict(self) -> dict:
-        """A JSON-ready dict in the format of `robotdesc lint --format json` (this target)."""
-        from robotdesc.report.json import report_dict
-
-        return report_dict([self])
-
     def __repr__(self) -> str:
         counts = ", ".join(f"{n} {level}" for level, n in self.counts.items())
         return f"<LintResult {self.target!r}: {counts}>"

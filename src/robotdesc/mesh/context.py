@@ -18,7 +18,6 @@ import os
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
-from robotdesc.config import MeshSettings
 from robotdesc.mesh.analyze import analyze_mesh_file
 from robotdesc.mesh.cache import MeshCache, default_cache_dir
 from robotdesc.mesh.errors import DEFAULT_LIMITS, MeshError, MeshLimits
@@ -26,6 +25,7 @@ from robotdesc.mesh.primitives import primitive_properties
 from robotdesc.mesh.properties import MassProperties, Vec3, combine, moved_bounds
 from robotdesc.mesh.records import MassMethod, MeshSummary
 from robotdesc.mesh.resolve import MeshResolution, resolve_mesh
+from robotdesc.mesh.settings import MeshSettings
 from robotdesc.model.elements import Collision, Link, MeshRef, Robot, Visual
 
 log = logging.getLogger(__name__)

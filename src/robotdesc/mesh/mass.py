@@ -20,8 +20,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from robotdesc.spatial import Mat3, Vec3
 from robotdesc.mesh.properties import MassProperties, combine, link_mass_properties
+from robotdesc.spatial import Mat3, Vec3
 
 __all__ = [
     "CHUNK_TRIANGLES",

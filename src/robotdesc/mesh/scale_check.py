@@ -9,8 +9,8 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from robotdesc.spatial import add, compose, norm, rotate, rpy_rotation, subtract
 from robotdesc.model.elements import Robot
+from robotdesc.spatial import add, compose, norm, rotate, rpy_rotation, subtract
 
 #: A mesh is suspicious when it is this many times larger than the robot (or its peers).
 TOO_LARGE_FACTOR = 20.0

@@ -23,13 +23,12 @@ import logging
 
 import numpy as np
 
-from robotdesc.mesh.analyze import analyze_mesh_file
 from robotdesc.mesh.health import MeshHealth, hole_caps, merge_vertices, mesh_health, topology
 from robotdesc.mesh.load import LoadedMesh
 from robotdesc.mesh.mass import MassProperties, Vec3, VolumeIntegrals, bounds, volume_integrals
 from robotdesc.mesh.records import MassMethod, MeshSummary
 
-__all__ = ["FLAT_VOLUME_FRACTION", "MassMethod", "MeshSummary", "analyze_mesh_file",
+__all__ = ["FLAT_VOLUME_FRACTION", "MassMethod", "MeshSummary",
            "convex_hull_properties", "summarize"]
 
 log = logging.getLogger(__name__)

@@ -291,11 +291,3 @@ class Robot:
     def joint(self, name: str) -> Joint | None:
         return next((joint for joint in self.joints if joint.name == name), None)
 
-    def show(self, joint_values: dict[str, float] | None = None, **options):
-        """The 3D view of this robot (renders in Jupyter; `.save(path)` writes the page).
-
-        See `robotdesc.view.show.show` for the options.
-        """
-        from robotdesc.view.show import show
-
-        return show(self, joint_values, **options)

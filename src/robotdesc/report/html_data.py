@@ -51,7 +51,7 @@ def collect_report(result: Any, *, package_paths: Sequence[str] = (),
         package_paths, package_map: where `package://` meshes are looked up first.
         joint_values: the configuration of the 3D view (rad or m).
         max_faces: display budget per mesh file.
-        mesh_settings: `robotdesc.config.MeshSettings` (default: the defaults).
+        mesh_settings: `robotdesc.mesh.settings.MeshSettings` (default: the defaults).
         collision_method: run `generate_collision` with this method ("decimate", "hull",
             "coacd", "primitive", "auto"); None: do not.
         collision_options: a `robotdesc.collision.CollisionOptions`, if any.
@@ -61,7 +61,7 @@ def collect_report(result: Any, *, package_paths: Sequence[str] = (),
     Raises:
         InputError: `joint_values` names an unknown, fixed or mimic joint.
     """
-    from robotdesc.config import MeshSettings
+    from robotdesc.mesh.settings import MeshSettings
     from robotdesc.view.scene import DEFAULT_MAX_FACES, build_scene
 
     started = time.perf_counter()

@@ -114,7 +114,7 @@ def _count(suite: etree._Element, *, tests: int, failures: int, errors: int) -> 
 def _case_name(code: str, names: dict[str, str]) -> str:
     if code in names:
         return f"{code} {names[code]}"
-    from robotdesc.rules.registry import get_rule
+    from robotdesc.rules.catalog import get_rule
 
     rule = get_rule(code)
     return f"{code} {rule.name}" if rule else code

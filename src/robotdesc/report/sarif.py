@@ -50,7 +50,7 @@ def sarif_log(results: Sequence[Any], failures: Sequence[Any] = (), *,
     """The SARIF log as a JSON-ready dict."""
 
     if rules is None:
-        from robotdesc.rules.registry import all_rules
+        from robotdesc.rules.catalog import all_rules
 
         rules = all_rules()
     root = os.path.abspath(cwd or os.getcwd())

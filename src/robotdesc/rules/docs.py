@@ -9,8 +9,9 @@ import dataclasses
 import inspect
 import sys
 
+from robotdesc.rules.catalog import all_rules
 from robotdesc.rules.fixes import FIXABLE
-from robotdesc.rules.registry import Rule, all_rules
+from robotdesc.rules.registry import Rule
 
 #: Lines of a rule docstring that become section headings.
 SECTION_HEADINGS = ("Why is this bad?", "Example")

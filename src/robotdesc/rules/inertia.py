@@ -20,14 +20,14 @@ from robotdesc.inertia.links import (
     parent_joints,
     root_links,
 )
+from robotdesc.model.elements import Link, Robot
+from robotdesc.rules.registry import RuleContext, rule
 from robotdesc.spatial import (
     MAX_MATERIAL_DENSITY,
     minimum_trace,
     principal_moments,
     triangle_violation,
 )
-from robotdesc.model.elements import Link, Robot
-from robotdesc.rules.registry import RuleContext, rule
 
 FAMILY = "inertia"
 

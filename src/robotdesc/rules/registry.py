@@ -125,22 +125,17 @@ def rule(code: str, name: str, *, family: str, severity: Severity | str = Severi
     return register
 
 
-def all_rules() -> list[Rule]:
-    """Every registered rule, sorted by code (loads the rule modules on first use)."""
-    _load_rule_modules()
+def registered_rules() -> list[Rule]:
+    """The rules registered so far, sorted by code (`robotdesc.rules.catalog.all_rules` loads
+    every rule module first)."""
     return sorted(_REGISTRY.values(), key=lambda r: r.code)
 
 
-def get_rule(code_or_name: str) -> Rule | None:
-    """The rule with this code (case-insensitive) or kebab-case name, or None."""
-    _load_rule_modules()
+def find_registered(code_or_name: str) -> Rule | None:
+    """The registered rule with this code (case-insensitive) or kebab-case name, or None."""
     key = code_or_name.strip()
     found = _REGISTRY.get(key.upper())
     return found or next((r for r in _REGISTRY.values() if r.name == key), None)
-
-
-def _load_rule_modules() -> None:
-    from robotdesc.rules import catalog  # noqa: F401  (imports every rule module)
 
 
 def run_rule(rule_: Rule, robot: Robot, ctx: RuleContext) -> Iterator[Finding]:

@@ -28,8 +28,8 @@ import numpy as np
 
 from robotdesc.errors import InputError
 from robotdesc.model.elements import Cylinder, Robot, Sphere
-from robotdesc.spatial import rpy_matrix
 from robotdesc.sim.engine import EngineScene
+from robotdesc.spatial import rpy_matrix
 
 log = logging.getLogger(__name__)
 

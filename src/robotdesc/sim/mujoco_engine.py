@@ -20,9 +20,8 @@ import numpy as np
 
 from robotdesc.model.elements import Robot
 from robotdesc.sim.backend import import_mujoco
-from robotdesc.sim.convert import Scene, SceneOptions
+from robotdesc.sim.convert import Scene, SceneOptions, lowest_point
 from robotdesc.sim.convert import build_scene as build_mujoco_scene
-from robotdesc.sim.convert import lowest_point
 from robotdesc.sim.engine import EngineScene
 from robotdesc.sim.hold import HoldOptions, apply_hold, neutral_controls
 from robotdesc.sim.meshes import MeshAssets

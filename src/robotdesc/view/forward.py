@@ -18,8 +18,8 @@ from collections.abc import Mapping
 import numpy as np
 
 from robotdesc.errors import UsageError
-from robotdesc.spatial import pose_matrix
 from robotdesc.model.elements import Joint, Robot
+from robotdesc.spatial import pose_matrix
 
 log = logging.getLogger(__name__)
 

@@ -13,8 +13,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from robotdesc.spatial import rpy_matrix
 from robotdesc.model.elements import Inertial
+from robotdesc.spatial import rpy_matrix
 
 
 @dataclass(frozen=True, eq=False)

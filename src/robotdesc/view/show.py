@@ -14,7 +14,10 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from robotdesc.diagnostics import Diagnostic
+from robotdesc.expansion import ExpandOptions, expand_file
+from robotdesc.linting.driver import lint_file
 from robotdesc.model.elements import Robot
+from robotdesc.model.parse import parse_urdf
 from robotdesc.output import write_output
 
 SHOW_OPTIONS = ("visual", "collision", "inertia", "findings")
@@ -116,12 +119,12 @@ def _robot_and_findings(target: Any, args: Mapping[str, str] | None,
     if isinstance(robot, Robot):  # a LintResult
         return robot, tuple(getattr(target, "diagnostics", ()))
     if isinstance(target, (str, os.PathLike)):
-        import robotdesc
-
         path = os.fspath(target)
+        options = ExpandOptions(package_paths=tuple(package_paths))
         if lint:
-            result = robotdesc.lint(path, args, package_paths=package_paths)
+            result = lint_file(path, args=args, expand_options=options)
             return result.robot, tuple(result.diagnostics)
-        return robotdesc.load(path, args, package_paths=package_paths), ()
+        expanded = expand_file(path, dict(args or {}), options=options)
+        return parse_urdf(expanded.xml, expanded.source, expanded.files), ()
     raise TypeError(f"show() takes a file path, a Robot or a LintResult, not "
                     f"{type(target).__name__}")

@@ -5,7 +5,13 @@ where each change goes in the source (a literal, or a macro argument at its call
 engine.py checks shared locations, builds the fixed files and the diff, and writes them.
 """
 
-from robotdesc.linting.fix.engine import FileFix, FixOutcome, FixPlan, package_root, \
-    plan_fixes, write_fixes
+from robotdesc.linting.fix.engine import (
+    FileFix,
+    FixOutcome,
+    FixPlan,
+    package_root,
+    plan_fixes,
+    write_fixes,
+)
 
 __all__ = ["FileFix", "FixOutcome", "FixPlan", "package_root", "plan_fixes", "write_fixes"]

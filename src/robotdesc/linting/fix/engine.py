@@ -18,8 +18,7 @@ from typing import Any
 
 from robotdesc.atomic import write_atomically
 from robotdesc.diagnostics import Diagnostic
-from robotdesc.linting.fix.changes import ExpandedIndex, NotApplicable, enclosing_package, \
-    fixer_for
+from robotdesc.linting.fix.changes import ExpandedIndex, NotApplicable, enclosing_package, fixer_for
 from robotdesc.linting.fix.plan import Edit, SourceCache, plan_change
 from robotdesc.rules.fixes import Applicability, fix_applicability
 
