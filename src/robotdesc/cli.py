@@ -12,12 +12,20 @@ import dataclasses
 import logging
 import os
 import sys
-from dataclasses import dataclass
 from typing import Any, Sequence
 
 from robotdesc._version import __version__
+from robotdesc.commands.inputs import (
+    EXIT_FINDINGS,
+    EXIT_INPUT,
+    EXIT_INTERNAL,
+    EXIT_INTERRUPTED,
+    EXIT_OK,
+    expand_options,
+    single_input,
+    split_inputs,
+)
 
-EXIT_OK, EXIT_FINDINGS, EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
 REPORT_FORMATS = ("text", "json", "sarif", "junit", "github", "gitlab")
 BUG_REPORT_URL = "https://github.com/robotdesc/robotdesc/issues"
 
@@ -391,71 +399,6 @@ def rule_help(rule: Any) -> str:
 # --- helpers ------------------------------------------------------------------------------
 
 
-def split_inputs(inputs: Sequence[str]) -> tuple[list[str], dict[str, str]]:
-    """Separate paths from `name:=value` xacro arguments."""
-    from robotdesc.errors import UsageError
-
-    paths, args = [], {}
-    for item in inputs:
-        name, sep, value = item.partition(":=")
-        if sep and name and not os.path.exists(item):
-            if not name.replace("_", "").replace("-", "").isalnum():
-                raise UsageError(f"bad xacro argument '{item}' (expected name:=value)")
-            args[name] = value
-        elif "=" in item and not os.path.exists(item) \
-                and item.partition("=")[0].replace("_", "").replace("-", "").isalnum():
-            name, _, value = item.partition("=")  # a xacro argument without its colon
-            raise UsageError(f"'{item}' is neither a file nor a xacro argument; xacro "
-                             f"arguments take a colon: {name}:={value}")
-        else:
-            paths.append(item)
-    if not paths:
-        raise UsageError("no file given")
-    return paths, args
-
-
-@dataclass(frozen=True)
-class SingleInput:
-    """The one description a command works on, with what its config says about it.
-
-    Attributes:
-        source: the file's path as given.
-        cli_args: the `name:=value` xacro arguments from the command line.
-        config: the config given with --config, or found from the file.
-        options: the expansion options (command line and the config's packages).
-    """
-
-    source: str
-    cli_args: dict[str, str]
-    config: Any
-    options: Any
-
-    @property
-    def args(self) -> dict[str, str]:
-        """The xacro arguments: the config's, overridden by the command line's."""
-        return {**dict(self.config.args), **self.cli_args}
-
-
-def single_input(ns: argparse.Namespace, verb: str) -> SingleInput:
-    """Read `ns.inputs` as one file plus xacro arguments, and load its config.
-
-    Raises:
-        UsageError: not exactly one file, a bad argument or a bad option.
-    """
-    from robotdesc.config import discover_config, load_config
-    from robotdesc.errors import UsageError
-
-    paths, args = split_inputs(ns.inputs)
-    if len(paths) != 1:
-        raise UsageError(f"{verb} takes one file, got {len(paths)}: {' '.join(paths)}")
-    source = paths[0]
-    config = load_config(ns.config) if ns.config else discover_config(source)
-    options = expand_options(ns, config.packages)  # the config's default args may go unused
-    options = dataclasses.replace(options, unchecked_args=tuple(
-        name for name, _ in config.args if name not in args))
-    return SingleInput(source, args, config, options)
-
-
 def _selectors(values: Sequence[str], flag: str) -> list[str]:
     """Comma-separated selectors from repeatable flags, checked against the registry."""
     from robotdesc.errors import UsageError
@@ -468,19 +411,6 @@ def _selectors(values: Sequence[str], flag: str) -> list[str]:
         if unknown:
             raise UsageError(f"{flag}: no rule matches '{unknown[0]}' (see `robotdesc rules`)")
     return selectors
-
-
-def expand_options(ns: argparse.Namespace, package_map: Sequence[tuple[str, str]] = ()) -> Any:
-    from robotdesc.expansion import ExpandOptions
-
-    if ns.timeout <= 0:
-        from robotdesc.errors import UsageError
-
-        raise UsageError("--timeout must be positive")
-    return ExpandOptions(package_paths=tuple(os.path.abspath(p) for p in ns.package_path),
-                         package_map=tuple(package_map), trusted=ns.trusted,
-                         use_cache=not ns.no_cache, timeout_s=ns.timeout,
-                         env_allowlist=tuple(ns.env))
 
 
 def _write_report(ns: argparse.Namespace, results: list, failures: list,

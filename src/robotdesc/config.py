@@ -49,7 +49,6 @@ from robotdesc.diagnostics import Severity
 from robotdesc.errors import ConfigError
 from robotdesc.linting.select import find_rule, unknown_selectors
 from robotdesc.mesh.settings import MeshSettings
-from robotdesc.rules.catalog import all_rules
 from robotdesc.source import Span
 
 CONFIG_FILES = ("robotdesc.toml", "pyproject.toml")
@@ -180,6 +179,8 @@ def config_from_mapping(table: Mapping[str, Any], path: str, *, text: str = "",
     """
     where = _Locator(path, text, prefix)
     if rules is None:
+        from robotdesc.rules.catalog import all_rules  # every rule module, lxml among them
+
         rules = all_rules()
     known = list(rules)
 

@@ -83,9 +83,9 @@ def run(ns: argparse.Namespace) -> int:
     import os
     from dataclasses import replace
 
-    from robotdesc.cli import EXIT_FINDINGS, EXIT_OK, single_input
     from robotdesc.collision.limits import ENGINE_LIMITS
     from robotdesc.collision.options import CollisionOptions
+    from robotdesc.commands.inputs import EXIT_FINDINGS, EXIT_OK, single_input
     from robotdesc.errors import UsageError
     from robotdesc.expansion import expand_file
     from robotdesc.model.parse import parse_urdf

@@ -40,7 +40,7 @@ def run_inertia(ns: argparse.Namespace) -> int:
     """The handler: expand, parse, measure, print; exit 0 (2 on unreadable input)."""
     import dataclasses
 
-    from robotdesc.cli import single_input
+    from robotdesc.commands.inputs import single_input
     from robotdesc.expansion import expand_file
     from robotdesc.inertia.table import inertia_table, render_table
     from robotdesc.linting.inputs import description_inputs, run_inputs

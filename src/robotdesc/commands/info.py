@@ -33,7 +33,7 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
 def load_robot(ns: argparse.Namespace, verb: str) -> tuple[Any, Any, str, Any]:
     """Expand and parse the one input file; returns (robot, mesh resolver, source path,
     the files the run read as `robotdesc.output.RunInputs`)."""
-    from robotdesc.cli import single_input
+    from robotdesc.commands.inputs import single_input
     from robotdesc.expansion import expand_file
     from robotdesc.kinematics.resolve import mesh_resolver, package_lookup
     from robotdesc.linting.inputs import run_inputs

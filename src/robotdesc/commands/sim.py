@@ -70,7 +70,7 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
 
 def run_sim(ns: argparse.Namespace) -> int:
     """The handler: load, settle, time, print; exit 0 pass, 1 fail, 2 input error."""
-    from robotdesc.cli import single_input
+    from robotdesc.commands.inputs import single_input
     from robotdesc.errors import InputError, UsageError
     from robotdesc.progress import progress_for
     from robotdesc.sim.backend import import_mujoco

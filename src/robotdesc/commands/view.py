@@ -55,7 +55,7 @@ def load_target(ns: argparse.Namespace, lint: bool = True) -> tuple[Any, Any, An
         UsageError: not exactly one file, or a bad option.
         OutputError: `ns.output` is an input of the run.
     """
-    from robotdesc.cli import single_input
+    from robotdesc.commands.inputs import single_input
     from robotdesc.errors import UsageError
     from robotdesc.linting.inputs import description_inputs, run_inputs
     from robotdesc.output import check_output
