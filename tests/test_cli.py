@@ -282,10 +282,10 @@ def _raise(exc: BaseException):
 
 def test_internal_error_exits_3_with_a_bug_report_hint(project: Path, monkeypatch, capsys) -> None:
     from robotdesc import cli
-    from robotdesc.linting import driver
+    from robotdesc.linting import parallel
 
     write(project / "clean.urdf", CLEAN)
-    monkeypatch.setattr(driver, "lint_file", _raise(RuntimeError("kaput")))
+    monkeypatch.setattr(parallel, "lint_file", _raise(RuntimeError("kaput")))
     assert cli.main(["lint", str(project / "clean.urdf")]) == 3
     err = capsys.readouterr().err
     assert "internal error: RuntimeError: kaput" in err and "please report it" in err
@@ -296,10 +296,10 @@ def test_internal_error_exits_3_with_a_bug_report_hint(project: Path, monkeypatc
 
 def test_keyboard_interrupt_exits_130(project: Path, monkeypatch, capsys) -> None:
     from robotdesc import cli
-    from robotdesc.linting import driver
+    from robotdesc.linting import parallel
 
     write(project / "clean.urdf", CLEAN)
-    monkeypatch.setattr(driver, "lint_file", _raise(KeyboardInterrupt()))
+    monkeypatch.setattr(parallel, "lint_file", _raise(KeyboardInterrupt()))
     assert cli.main(["lint", str(project / "clean.urdf")]) == 130
     assert "interrupted" in capsys.readouterr().err
 

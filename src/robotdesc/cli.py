@@ -9,12 +9,14 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import importlib
 import logging
 import os
 import sys
 from typing import Any, Sequence
 
 from robotdesc._version import __version__
+from robotdesc.commands import COMMAND_MODULES
 from robotdesc.commands.inputs import (
     EXIT_FINDINGS,
     EXIT_INPUT,
@@ -25,6 +27,21 @@ from robotdesc.commands.inputs import (
     single_input,
     split_inputs,
 )
+from robotdesc.config import load_config
+from robotdesc.diagnostics import Severity
+from robotdesc.errors import InputError, UsageError
+from robotdesc.expansion import expand_file
+from robotdesc.linting.baseline import apply_baseline, read_baseline, render_baseline
+from robotdesc.linting.inputs import description_inputs, expansion_inputs, run_inputs
+from robotdesc.linting.result import LintFailure, LintResult
+from robotdesc.linting.select import unknown_selectors
+from robotdesc.linting.targets import discover_targets, target_name
+from robotdesc.output import NO_INPUTS, RunInputs, check_output
+from robotdesc.output import write_output as write
+from robotdesc.progress import progress_for
+from robotdesc.report.table import render_table
+from robotdesc.report.text import render_failure, render_text
+from robotdesc.rules.fixes import FIXABLE
 
 REPORT_FORMATS = ("text", "json", "sarif", "junit", "github", "gitlab")
 BUG_REPORT_URL = "https://github.com/robotdesc/robotdesc/issues"
@@ -49,8 +66,6 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def _run(ns: argparse.Namespace, verbose: int) -> int:
     """Run the chosen command, turning every failure into its exit code."""
-    from robotdesc.errors import InputError
-
     try:
         return ns.handler(ns)
     except KeyboardInterrupt:
@@ -165,10 +180,6 @@ def build_parser() -> argparse.ArgumentParser:
     rule.add_argument("code", metavar="CODE", help="a rule code (J101) or name")
     rule.set_defaults(handler=_run_rule)
 
-    import importlib
-
-    from robotdesc.commands import COMMAND_MODULES
-
     for module in COMMAND_MODULES:  # each: register(commands, common=..., expansion=...)
         importlib.import_module(module).register(commands, common=common, expansion=expansion)
     return parser
@@ -178,12 +189,6 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _run_lint(ns: argparse.Namespace) -> int:
-    from robotdesc.config import load_config
-    from robotdesc.diagnostics import Severity
-    from robotdesc.errors import InputError, UsageError
-    from robotdesc.linting.result import LintFailure, LintResult
-    from robotdesc.linting.targets import discover_targets
-
     if ns.statistics and ns.format not in ("text", "json"):
         raise UsageError("--statistics works with --format text or json")
     if ns.jobs < 0:
@@ -234,7 +239,6 @@ def _lint_with_progress(ns: argparse.Namespace, targets: list, args: dict, optio
     """`lint_targets` with progress on stderr: target by target in this process, or as one
     step with worker processes."""
     from robotdesc.linting.parallel import effective_jobs, lint_targets
-    from robotdesc.progress import progress_for
 
     with progress_for(ns, "lint", total=len(targets), unit="targets") as progress:
         if min(effective_jobs(ns.jobs), len(targets)) > 1:
@@ -251,8 +255,6 @@ def _lint_with_progress(ns: argparse.Namespace, targets: list, args: dict, optio
 
 def _check_lint_outputs(ns: argparse.Namespace, targets: list) -> None:
     """Refuse, before any work, an output that is a target, the config or the baseline."""
-    from robotdesc.output import RunInputs, check_output
-
     known = RunInputs().adding([ns.config, ns.baseline], "a file given to this run")
     known = known.adding([t.path for t in targets], "a description being checked")
     for path in (ns.output_file, ns.write_baseline):
@@ -264,9 +266,6 @@ def _lint_inputs(ns: argparse.Namespace, targets: list, results: list, failures:
                  options: Any) -> Any:
     """Every file the lint read (targets, includes, configs, package.xml, meshes, the
     baseline): no output may replace one."""
-    from robotdesc.linting.inputs import run_inputs
-    from robotdesc.output import RunInputs
-
     inputs = RunInputs().adding([ns.config, ns.baseline], "a file given to this run")
     inputs = inputs.adding([t.path for t in targets] + [f.target for f in failures],
                            "a description being checked")
@@ -280,8 +279,6 @@ def _lint_inputs(ns: argparse.Namespace, targets: list, results: list, failures:
 
 def _write_discovery(stream: Any, discovery: Any) -> None:
     """Say what a directory search found (on stderr: reports stay machine-readable)."""
-    from robotdesc.linting.targets import target_name
-
     def listing(names: list[str]) -> str:
         return ", ".join(names[:8]) + (f", ... ({len(names) - 8} more)" if len(names) > 8
                                        else "")
@@ -302,8 +299,6 @@ def _write_discovery(stream: Any, discovery: Any) -> None:
 
 def _apply_baseline(ns: argparse.Namespace, results: list, inputs: Any) -> list:
     """--write-baseline records the findings; --baseline (or the written one) hides them."""
-    from robotdesc.linting.baseline import apply_baseline, read_baseline, render_baseline
-
     if ns.write_baseline:
         write_output(ns.write_baseline, render_baseline(results, ns.write_baseline)
                      .encode("utf-8"), inputs)
@@ -327,10 +322,7 @@ def _apply_baseline(ns: argparse.Namespace, results: list, inputs: Any) -> list:
 
 
 def _run_expand(ns: argparse.Namespace) -> int:
-    from robotdesc.expansion import expand_file
-    from robotdesc.linting.inputs import description_inputs, expansion_inputs
     from robotdesc.model.write import urdf_text
-    from robotdesc.output import check_output
 
     single = single_input(ns, "expand")
     source = single.source
@@ -349,7 +341,6 @@ def _run_expand(ns: argparse.Namespace) -> int:
 
 
 def _run_rules(ns: argparse.Namespace) -> int:
-    from robotdesc.report.table import render_table
     from robotdesc.rules.catalog import all_rules
 
     rows = [(r.code, r.name, r.family, str(r.severity), r.summary) for r in all_rules()]
@@ -359,7 +350,6 @@ def _run_rules(ns: argparse.Namespace) -> int:
 
 
 def _run_rule(ns: argparse.Namespace) -> int:
-    from robotdesc.errors import UsageError
     from robotdesc.rules.catalog import get_rule
 
     found = get_rule(ns.code)
@@ -375,7 +365,6 @@ def rule_help(rule: Any) -> str:
              f"Family: {rule.family}", f"Default severity: {rule.severity}"]
     if rule.needs:
         lines.append(f"Needs: {', '.join(sorted(rule.needs))}")
-    from robotdesc.rules.fixes import FIXABLE
 
     if rule.code in FIXABLE:
         applicability = FIXABLE[rule.code].value
@@ -401,8 +390,6 @@ def rule_help(rule: Any) -> str:
 
 def _selectors(values: Sequence[str], flag: str) -> list[str]:
     """Comma-separated selectors from repeatable flags, checked against the registry."""
-    from robotdesc.errors import UsageError
-    from robotdesc.linting.select import unknown_selectors
     from robotdesc.rules.catalog import all_rules
 
     selectors = [part.strip() for value in values for part in value.split(",") if part.strip()]
@@ -455,25 +442,18 @@ def _render_report(fmt: str, statistics: bool, results: list, failures: list,
         from robotdesc.report.gitlab import render_gitlab
 
         return render_gitlab(results, failures)
-    from robotdesc.report.text import render_text
 
     return None if colour else render_text(results, failures)
 
 
 def _write_input_error(stream: Any, error: Any, target: str | None) -> None:
     """`path:line:col: error: message`, the source line and the macro call chain."""
-    from robotdesc.linting.result import LintFailure
-    from robotdesc.report.text import render_failure
-
     stream.write(render_failure(LintFailure(target or "robotdesc", error)))
 
 
 def write_output(path: str, data: bytes, inputs: Any = None) -> None:
     """Write a command's output through `robotdesc.output.write_output` (which refuses to
     replace any of `inputs`, the files the run read)."""
-    from robotdesc.output import NO_INPUTS
-    from robotdesc.output import write_output as write
-
     write(path, data, inputs if inputs is not None else NO_INPUTS)
 
 

@@ -19,7 +19,7 @@ def test_missing_pinocchio_is_an_input_error_that_says_how_to_install(monkeypatc
 def test_rules_needing_pinocchio_are_skipped_with_a_note(monkeypatch, caplog) -> None:
     import robotdesc.rules.kinematics as family
 
-    monkeypatch.setattr("robotdesc.kinematics.optional.pinocchio_available", lambda: False)
+    monkeypatch.setattr(family, "pinocchio_available", lambda: False)
     monkeypatch.setattr(family, "_NOTED", set())
     caplog.set_level(logging.WARNING, logger="robotdesc")
     arm = robot(ARM)

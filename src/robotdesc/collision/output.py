@@ -44,6 +44,7 @@ from robotdesc.collision.result import CollisionResult, MeshPart, PrimitivePart
 from robotdesc.collision.stl import stl_bytes
 from robotdesc.collision.xacro_patch import XacroPatch, build_patch
 from robotdesc.errors import InputError
+from robotdesc.expansion.packages import enclosing_package
 from robotdesc.model.elements import Box, Capsule, Cylinder, MeshRef, Sphere
 from robotdesc.output import (
     NO_INPUTS,
@@ -338,8 +339,6 @@ def _xacro_snippet(result: CollisionResult, references: dict, package: str | Non
 
 def _package_prefix(out_dir: str) -> str | None:
     """`package://pkg/rel/` when the folder is inside a ROS package, else None (relative)."""
-    from robotdesc.expansion.packages import enclosing_package
-
     found = enclosing_package(out_dir)
     if found is None:
         return None

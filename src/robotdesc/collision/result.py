@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass, field
-from typing import Any
-
-import numpy as np
+from dataclasses import asdict as as_dict
+from typing import TYPE_CHECKING, Any
 
 from robotdesc.model.elements import Box, Capsule, Cylinder, Pose, Robot, Sphere
+
+if TYPE_CHECKING:
+    import numpy as np
 
 #: Finding severities: "error" (the link gets no new geometry), "warning" (written, but the
 #: run fails: exit 1), "info" (reported only).
@@ -159,8 +161,6 @@ class CollisionResult:
                 "cached": sum(1 for o in self.outcomes if o.report.cached)}
 
     def to_dict(self) -> dict[str, Any]:
-        from dataclasses import asdict as as_dict
-
         return {"robot": self.robot.name, "source": self.robot.source,
                 "options": as_dict(self.options), "jobs": self.jobs,
                 "links": [o.report.to_dict() for o in self.outcomes],

@@ -28,6 +28,7 @@ from lxml import etree
 
 from robotdesc.collision.manifest import read_manifest
 from robotdesc.collision.xml_extent import ElementExtent, element_extents
+from robotdesc.expansion.packages import enclosing_package
 from robotdesc.model.elements import Link, Robot
 
 #: The reason given for a link whose `<collision>` already comes from this run's snippet.
@@ -343,7 +344,6 @@ def _root(files: Sequence[str], source: str) -> str:
     """The package of the description when it holds every file, else their common folder."""
     if not files:
         return ""
-    from robotdesc.expansion.packages import enclosing_package
 
     package = enclosing_package(source) if source else None
     if package is not None:
@@ -355,8 +355,6 @@ def _root(files: Sequence[str], source: str) -> str:
 
 def _escaping(files: Sequence[str], out_dir: str) -> list[str]:
     """Patched files in a ROS package that does not hold `out_dir` (relative paths leave it)."""
-    from robotdesc.expansion.packages import enclosing_package
-
     found = []
     for path in files:
         package = enclosing_package(path)

@@ -12,7 +12,18 @@ config decides on absolute and file:// paths).
 from __future__ import annotations
 
 import argparse
+import json
+import os
 import sys
+from dataclasses import replace
+
+from robotdesc.collision.limits import ENGINE_LIMITS
+from robotdesc.collision.options import CollisionOptions
+from robotdesc.commands.inputs import EXIT_FINDINGS, EXIT_OK, single_input
+from robotdesc.errors import UsageError
+from robotdesc.expansion import expand_file
+from robotdesc.output import check_output_dir
+from robotdesc.progress import progress_for
 
 
 def register(subparsers, *, common, expansion) -> None:
@@ -79,17 +90,7 @@ def register(subparsers, *, common, expansion) -> None:
 
 
 def run(ns: argparse.Namespace) -> int:
-    import json
-    import os
-    from dataclasses import replace
-
-    from robotdesc.collision.limits import ENGINE_LIMITS
-    from robotdesc.collision.options import CollisionOptions
-    from robotdesc.commands.inputs import EXIT_FINDINGS, EXIT_OK, single_input
-    from robotdesc.errors import UsageError
-    from robotdesc.expansion import expand_file
     from robotdesc.model.parse import parse_urdf
-    from robotdesc.output import check_output_dir
 
     single = single_input(ns, "collision")
     if not ns.out and not ns.dry_run:
@@ -134,7 +135,6 @@ def run(ns: argparse.Namespace) -> int:
         return EXIT_FINDINGS if stale else EXIT_OK
 
     from robotdesc.collision.generate import generate_collision
-    from robotdesc.progress import progress_for
 
     try:
         with progress_for(ns, "collision", unit="links") as bar:

@@ -7,9 +7,15 @@ Heavy modules (numpy, the mesh readers) are imported inside the handler.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import sys
 from typing import Any
+
+from robotdesc.commands.inputs import single_input
+from robotdesc.expansion import expand_file
+from robotdesc.linting.inputs import description_inputs, run_inputs
+from robotdesc.output import check_output, write_output
 
 
 def register(subparsers: Any, *, common: argparse.ArgumentParser,
@@ -38,15 +44,9 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
 
 def run_inertia(ns: argparse.Namespace) -> int:
     """The handler: expand, parse, measure, print; exit 0 (2 on unreadable input)."""
-    import dataclasses
-
-    from robotdesc.commands.inputs import single_input
-    from robotdesc.expansion import expand_file
     from robotdesc.inertia.table import inertia_table, render_table
-    from robotdesc.linting.inputs import description_inputs, run_inputs
     from robotdesc.mesh.context import MeshContext
     from robotdesc.model.parse import parse_urdf
-    from robotdesc.output import check_output, write_output
 
     single = single_input(ns, "inertia")
     source, config, options = single.source, single.config, single.options

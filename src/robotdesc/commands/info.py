@@ -11,6 +11,14 @@ import json
 import sys
 from typing import Any
 
+from robotdesc.commands.inputs import single_input
+from robotdesc.errors import UsageError
+from robotdesc.expansion import expand_file
+from robotdesc.kinematics.optional import import_pinocchio
+from robotdesc.kinematics.resolve import mesh_resolver, package_lookup
+from robotdesc.linting.inputs import run_inputs
+from robotdesc.progress import progress_for
+
 
 def register(subparsers: Any, *, common: argparse.ArgumentParser,
              expansion: argparse.ArgumentParser) -> None:
@@ -33,10 +41,6 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
 def load_robot(ns: argparse.Namespace, verb: str) -> tuple[Any, Any, str, Any]:
     """Expand and parse the one input file; returns (robot, mesh resolver, source path,
     the files the run read as `robotdesc.output.RunInputs`)."""
-    from robotdesc.commands.inputs import single_input
-    from robotdesc.expansion import expand_file
-    from robotdesc.kinematics.resolve import mesh_resolver, package_lookup
-    from robotdesc.linting.inputs import run_inputs
     from robotdesc.model.parse import parse_urdf
 
     single = single_input(ns, verb)
@@ -52,8 +56,6 @@ def load_robot(ns: argparse.Namespace, verb: str) -> tuple[Any, Any, str, Any]:
 
 def parse_positions(items: list[str]) -> dict[str, float]:
     """`name=value` pairs (rad or m) into a dict."""
-    from robotdesc.errors import UsageError
-
     positions = {}
     for item in items:
         name, sep, value = item.partition("=")
@@ -69,8 +71,6 @@ def parse_positions(items: list[str]) -> dict[str, float]:
 def run_info(ns: argparse.Namespace) -> int:
     """The handler: expand, build with Pinocchio, print; exit 0 (2 on unusable input)."""
     from robotdesc.kinematics.info import robot_info
-    from robotdesc.kinematics.optional import import_pinocchio
-    from robotdesc.progress import progress_for
 
     import_pinocchio("robotdesc info")
     positions = parse_positions(ns.q)

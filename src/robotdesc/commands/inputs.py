@@ -13,7 +13,9 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from robotdesc.config import discover_config, load_config
 from robotdesc.errors import UsageError
+from robotdesc.expansion import ExpandOptions
 
 if TYPE_CHECKING:
     from robotdesc.config import Config
@@ -72,8 +74,6 @@ def single_input(ns: argparse.Namespace, verb: str) -> SingleInput:
     Raises:
         UsageError: not exactly one file, a bad argument or a bad option.
     """
-    from robotdesc.config import discover_config, load_config
-
     paths, args = split_inputs(ns.inputs)
     if len(paths) != 1:
         raise UsageError(f"{verb} takes one file, got {len(paths)}: {' '.join(paths)}")
@@ -88,8 +88,6 @@ def single_input(ns: argparse.Namespace, verb: str) -> SingleInput:
 def expand_options(ns: argparse.Namespace,
                    package_map: Sequence[tuple[str, str]] = ()) -> "ExpandOptions":
     """The expansion options of the command line (and the config's package map)."""
-    from robotdesc.expansion import ExpandOptions
-
     if ns.timeout <= 0:
             raise UsageError("--timeout must be positive")
     return ExpandOptions(package_paths=tuple(os.path.abspath(p) for p in ns.package_path),

@@ -9,14 +9,18 @@ from __future__ import annotations
 
 import argparse
 import sys
+import time
 from typing import Any
+
+from robotdesc.commands.view import add_view_arguments, load_target
+from robotdesc.config import discover_config, load_config
+from robotdesc.output import write_output
+from robotdesc.progress import progress_for
 
 
 def register(subparsers: Any, *, common: argparse.ArgumentParser,
              expansion: argparse.ArgumentParser) -> None:
     """Add the `report` subcommand."""
-    from robotdesc.commands.view import add_view_arguments
-
     parser = subparsers.add_parser(
         "report", parents=[common, expansion], help="write an HTML report",
         description="Write one self-contained HTML page: findings grouped by link, a 3D view, "
@@ -37,12 +41,6 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
 
 def run_report(ns: argparse.Namespace) -> int:
     """The handler: lint, gather, render, write."""
-    import time
-
-    from robotdesc.commands.view import load_target
-    from robotdesc.config import discover_config, load_config
-    from robotdesc.output import write_output
-    from robotdesc.progress import progress_for
     from robotdesc.report.html import render_html_report
     from robotdesc.report.html_data import collect_report
     from robotdesc.view.forward import parse_assignments

@@ -8,6 +8,7 @@ import os
 from typing import Any
 
 from robotdesc.errors import UsageError
+from robotdesc.expansion import ExpandOptions
 
 log = logging.getLogger(__name__)
 
@@ -31,7 +32,6 @@ def run(ns: argparse.Namespace) -> int:
     except ImportError as error:
         raise UsageError(f"robotdesc server needs pygls ({error}); install it with "
                          "python -m pip install '.[lsp]' (from the clone)") from None
-    from robotdesc.expansion import ExpandOptions
     from robotdesc.server.session import Session
 
     if ns.timeout <= 0:

@@ -10,8 +10,15 @@ the engine, an optional extra, is not installed). Engines are imported inside th
 from __future__ import annotations
 
 import argparse
+import dataclasses
+import json
 import sys
 from typing import Any, TextIO
+
+from robotdesc.commands.inputs import single_input
+from robotdesc.errors import InputError, UsageError
+from robotdesc.progress import progress_for
+from robotdesc.sim.backend import import_mujoco
 
 
 def register(subparsers: Any, *, common: argparse.ArgumentParser,
@@ -70,11 +77,6 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
 
 def run_sim(ns: argparse.Namespace) -> int:
     """The handler: load, settle, time, print; exit 0 pass, 1 fail, 2 input error."""
-    from robotdesc.commands.inputs import single_input
-    from robotdesc.errors import InputError, UsageError
-    from robotdesc.progress import progress_for
-    from robotdesc.sim.backend import import_mujoco
-
     single = single_input(ns, "sim")
     if ns.seconds is None:
         ns.seconds = 0.5 if ns.compare else 2.0
@@ -85,8 +87,6 @@ def run_sim(ns: argparse.Namespace) -> int:
     if ns.compare or ns.drive or ns.engine != "mujoco" or ns.format == "json":
         return run_engine_checks(ns, single)
     import_mujoco()  # fail early, with the install hint, before any expansion work
-
-    import dataclasses
 
     from robotdesc.sim.convert import SceneOptions
     from robotdesc.sim.hold import HoldOptions
@@ -156,10 +156,6 @@ def write_rtf(out: TextIO, comparison: Any) -> None:
 
 def run_engine_checks(ns: argparse.Namespace, single: Any) -> int:
     """--engine, --compare, --drive and JSON output: exit 0 pass, 1 fail, 2 input error."""
-    import json
-
-    from robotdesc.errors import UsageError
-    from robotdesc.progress import progress_for
     from robotdesc.sim.compare import compare_variants, parse_variants
     from robotdesc.sim.convert import SceneOptions
     from robotdesc.sim.engine import engine as engine_named
@@ -209,7 +205,6 @@ def run_engine_checks(ns: argparse.Namespace, single: Any) -> int:
 def _drive(ns: argparse.Namespace, source: str, loaded: Any, engine: Any, scene_options: Any,
            hold: Any, progress: Any) -> Any:
     """The drive test with the configured or given drive joints."""
-    from robotdesc.errors import UsageError
     from robotdesc.sim.drive import (
         DriveGroup,
         DriveOptions,

@@ -10,7 +10,13 @@ from __future__ import annotations
 import argparse
 import logging
 import sys
+import time
 from typing import Any
+
+from robotdesc.commands.inputs import single_input
+from robotdesc.errors import UsageError
+from robotdesc.linting.inputs import description_inputs, run_inputs
+from robotdesc.output import check_output, write_output
 
 log = logging.getLogger(__name__)
 
@@ -55,11 +61,6 @@ def load_target(ns: argparse.Namespace, lint: bool = True) -> tuple[Any, Any, An
         UsageError: not exactly one file, or a bad option.
         OutputError: `ns.output` is an input of the run.
     """
-    from robotdesc.commands.inputs import single_input
-    from robotdesc.errors import UsageError
-    from robotdesc.linting.inputs import description_inputs, run_inputs
-    from robotdesc.output import check_output
-
     single = single_input(ns, ns.command)
     source, options = single.source, single.options
     check_output(ns.output, description_inputs(source, single.config.path))
@@ -86,10 +87,6 @@ def load_target(ns: argparse.Namespace, lint: bool = True) -> tuple[Any, Any, An
 
 def run_view(ns: argparse.Namespace) -> int:
     """The handler: lint, build the scene, write the page."""
-    import time
-
-    from robotdesc.errors import UsageError
-    from robotdesc.output import write_output
     from robotdesc.view.forward import parse_assignments
     from robotdesc.view.show import SHOW_OPTIONS, show
 

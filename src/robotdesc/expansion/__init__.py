@@ -15,6 +15,8 @@ from pathlib import Path
 from typing import Mapping
 
 from robotdesc import errors
+from robotdesc.expansion import cache
+from robotdesc.expansion.packages import PackageResolverConfig
 from robotdesc.expansion.result import Expanded, ExpansionNote, ResolvedPackage
 from robotdesc.source import Span
 
@@ -108,8 +110,6 @@ def expand_file(path: str | Path, args: Mapping[str, str] | None = None, *,
     Raises:
         InputError: the file cannot be expanded; its subclasses say why and where.
     """
-    from robotdesc.expansion import cache
-    from robotdesc.expansion.packages import PackageResolverConfig
     from robotdesc.expansion.runner import WorkerLimits, run_worker
 
     options = options or ExpandOptions()

@@ -18,6 +18,7 @@ import logging
 import os
 import stat
 import sys
+from importlib import metadata
 from pathlib import Path
 
 from robotdesc._version import __version__
@@ -33,8 +34,6 @@ MAX_ENTRY_BYTES = 64 << 20
 
 
 def _versions() -> dict[str, str]:
-    from importlib import metadata
-
     def version(name: str) -> str:
         try:
             return metadata.version(name)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 import re
+import sys
 import tempfile
 import threading
 from dataclasses import dataclass
@@ -160,8 +161,6 @@ class _StderrCapture:
     """Redirect the process's file descriptor 2 to a temporary file (C libraries write there)."""
 
     def __enter__(self) -> "_StderrCapture":
-        import sys
-
         sys.stderr.flush()
         self.text = ""
         self._file = tempfile.TemporaryFile()

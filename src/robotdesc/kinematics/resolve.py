@@ -6,6 +6,7 @@ import os
 from collections.abc import Callable
 
 from robotdesc.expansion.packages import package_lookup
+from robotdesc.mesh.resolve import resolve_mesh
 from robotdesc.model.elements import MeshRef, Robot
 
 __all__ = ["PackageLookup", "mesh_resolver", "package_lookup"]
@@ -18,8 +19,6 @@ def mesh_resolver(robot: Robot, find_package: PackageLookup) -> Callable[[MeshRe
 
     Relative filenames are taken from the folder of the file that wrote the `<mesh>`.
     """
-    from robotdesc.mesh.resolve import resolve_mesh
-
     def resolve(mesh: MeshRef) -> str | None:
         written_in = mesh.where.span.path if mesh.where is not None else robot.source
         base = os.path.dirname(os.path.abspath(written_in or "."))

@@ -8,6 +8,7 @@ baseline.py hides findings already recorded.
 
 from __future__ import annotations
 
+import importlib
 from typing import Any
 
 _LAZY = {"lint_file": "driver", "LintResult": "result", "RuleCrashed": "result",
@@ -20,6 +21,5 @@ __all__ = sorted(_LAZY)
 def __getattr__(name: str) -> Any:
     if name not in _LAZY:
         raise AttributeError(f"module 'robotdesc.linting' has no attribute '{name}'")
-    import importlib
 
     return getattr(importlib.import_module(f"robotdesc.linting.{_LAZY[name]}"), name)

@@ -12,12 +12,16 @@ import os
 from pathlib import Path
 from typing import Any, Iterable, Mapping, Sequence
 
+from robotdesc.cache_dir import default_cache_dir
 from robotdesc.config import Config, discover_config
 from robotdesc.diagnostics import Diagnostic, Finding, Severity
 from robotdesc.errors import RobotdescError
+from robotdesc.expansion import ExpandOptions, expand_file
+from robotdesc.linting import rule_cache
 from robotdesc.linting.result import LintResult, RuleCrashed
 from robotdesc.linting.select import is_selected, select_rules
 from robotdesc.linting.suppress import apply_suppressions, scan_files, unused_codes
+from robotdesc.rules.registry import ExpansionFacts, RuleContext, SourceDocument, run_rule
 from robotdesc.source import Provenance, Span
 
 log = logging.getLogger(__name__)
@@ -45,10 +49,8 @@ def lint_file(path: str, config: Config | None = None, *,
         InputError: the file could not be expanded or parsed (exit code 2).
         RuleCrashed: a rule raised (a bug, exit code 3).
     """
-    from robotdesc.expansion import ExpandOptions, expand_file
     from robotdesc.model.parse import parse_urdf
     from robotdesc.rules.catalog import all_rules
-    from robotdesc.rules.registry import ExpansionFacts, RuleContext, SourceDocument
 
     target = os.path.abspath(path)
     config = config if config is not None else discover_config(target)
@@ -111,12 +113,8 @@ def lint_file(path: str, config: Config | None = None, *,
 
 def _run_cached(rule: Any, robot: Any, context: Any, document: bytes, options: Any) -> list:
     """Run one rule; the findings of expensive rules come from the rule cache when valid."""
-    from robotdesc.linting import rule_cache
-    from robotdesc.rules.registry import run_rule
-
     if not (options.use_cache and rule_cache.is_cached(rule)):
         return list(run_rule(rule, robot, context))
-    from robotdesc.cache_dir import default_cache_dir
 
     folder = Path(options.cache_dir) if options.cache_dir else default_cache_dir()
     key = rule_cache.rule_key(rule, context.options, document, _mesh_files(robot, context),

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from typing import Any, Mapping, Sequence
 
 from robotdesc.errors import InputError, RobotdescError
+from robotdesc.linting.driver import lint_file
 from robotdesc.linting.inputs import run_inputs
 from robotdesc.linting.result import LintFailure, LintResult
 from robotdesc.linting.targets import LintTarget
@@ -86,8 +87,6 @@ def lint_targets(targets: Sequence[LintTarget], *, args: Mapping[str, str] | Non
 def _lint_one(target: LintTarget, args: dict, expand_options: Any, select: Any,
               ignore: tuple, keep_exceptions: bool = False) -> Outcome | _Crash:
     """Lint one target; input errors become failures, bugs become `_Crash` in a worker."""
-    from robotdesc.linting.driver import lint_file
-
     log.info("linting %s", target.name())
     try:
         result = lint_file(target.path, target.config, args={**dict(target.args), **args},

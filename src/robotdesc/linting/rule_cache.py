@@ -16,6 +16,7 @@ import hashlib
 import json
 import logging
 import os
+from importlib import metadata
 from pathlib import Path
 from typing import Any, Iterable
 
@@ -41,8 +42,6 @@ def rule_key(rule: Any, options: Any, document: bytes, mesh_files: Iterable[str]
              source: str = "") -> str:
     """The key of one rule's findings on one expanded document read from `source` (the
     findings point into it: two copies of one URDF have different keys)."""
-    from importlib import metadata
-
 
     def version(name: str) -> str:
         try:

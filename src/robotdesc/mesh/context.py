@@ -18,6 +18,7 @@ import os
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
+from robotdesc.expansion.packages import package_lookup
 from robotdesc.mesh.analyze import analyze_mesh_file
 from robotdesc.mesh.cache import MeshCache, default_cache_dir
 from robotdesc.mesh.errors import DEFAULT_LIMITS, MeshError, MeshLimits
@@ -26,7 +27,7 @@ from robotdesc.mesh.properties import MassProperties, Vec3, combine, moved_bound
 from robotdesc.mesh.records import MassMethod, MeshSummary
 from robotdesc.mesh.resolve import MeshResolution, resolve_mesh
 from robotdesc.mesh.settings import MeshSettings
-from robotdesc.model.elements import Collision, Link, MeshRef, Robot, Visual
+from robotdesc.model.elements import Box, Collision, Link, MeshRef, Robot, Sphere, Visual
 
 log = logging.getLogger(__name__)
 
@@ -122,8 +123,6 @@ class MeshContext:
                  package_paths: tuple[str, ...] = (),
                  package_map: tuple[tuple[str, str], ...] = ()) -> MeshContext:
         """The context for a linted file: the expansion's package chain and the mesh cache."""
-        from robotdesc.expansion.packages import package_lookup
-
         find_package = package_lookup(target, package_paths, package_map)
         directory = default_cache_dir() if settings.cache else None
         return cls(robot, settings, find_package, MeshCache(directory) if directory else None)
@@ -267,8 +266,6 @@ def _shapes(link: Link, kind: str) -> tuple[Visual | Collision, ...]:
 
 
 def _primitive_half_extent(geometry) -> Vec3:
-    from robotdesc.model.elements import Box, Sphere
-
     if isinstance(geometry, Box):
         x, y, z = geometry.size
         return (x / 2, y / 2, z / 2)

@@ -13,6 +13,9 @@ import os
 from typing import Any, Sequence
 
 from robotdesc.diagnostics import Diagnostic, Severity
+from robotdesc.linting.matrix import variant_label
+from robotdesc.linting.targets import target_name
+from robotdesc.report.text import summary_line
 from robotdesc.source import Span
 
 _COMMAND = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "notice"}
@@ -40,8 +43,6 @@ def render_github(results: Sequence[Any], failures: Sequence[Any] = (), *,
                   cwd: str | None = None) -> str:
     """Annotations for every finding and every file that could not be checked, then a
     summary line (text ending with a newline)."""
-    from robotdesc.report.text import summary_line
-
     root = os.path.abspath(cwd or os.getcwd())
     lines = [_annotation(d, r, root) for r in results for d in r.diagnostics]
     lines += [_failure(f, root) for f in failures]
@@ -52,8 +53,6 @@ def render_github(results: Sequence[Any], failures: Sequence[Any] = (), *,
 
 
 def _annotation(diagnostic: Diagnostic, result: Any, root: str) -> str:
-    from robotdesc.linting.matrix import variant_label
-
     span = diagnostic.where.span if diagnostic.where else None
     stack = diagnostic.where.macro_stack if diagnostic.where else ()
     message = diagnostic.message
@@ -69,8 +68,6 @@ def _annotation(diagnostic: Diagnostic, result: Any, root: str) -> str:
 
 
 def _failure(failure: Any, root: str) -> str:
-    from robotdesc.linting.targets import target_name
-
     error = failure.error
     span = getattr(error, "span", None)
     message = getattr(error, "message", str(error))
@@ -84,8 +81,6 @@ def _failure(failure: Any, root: str) -> str:
 
 
 def _path(path: str, root: str) -> str:
-    from robotdesc.linting.targets import target_name
-
     return target_name(path, (), root)
 
 

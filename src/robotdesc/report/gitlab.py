@@ -15,6 +15,7 @@ from collections import Counter
 from typing import Any, Sequence
 
 from robotdesc.diagnostics import Severity
+from robotdesc.linting.targets import target_name
 
 _SEVERITY = {Severity.ERROR: "major", Severity.WARNING: "minor", Severity.INFO: "info"}
 INPUT_ERROR_CHECK = "robotdesc-input-error"
@@ -23,8 +24,6 @@ INPUT_ERROR_CHECK = "robotdesc-input-error"
 def render_gitlab(results: Sequence[Any], failures: Sequence[Any] = (), *,
                   cwd: str | None = None) -> str:
     """The Code Quality report as JSON text ending with a newline."""
-    from robotdesc.linting.targets import target_name
-
     root = os.path.abspath(cwd or os.getcwd())
     issues: list[dict[str, Any]] = []
     seen: Counter = Counter()  # identical findings get distinct fingerprints

@@ -7,12 +7,16 @@ the inertia table, the collision table and plots (inline SVG). No network needed
 from __future__ import annotations
 
 import html
+import math
 import os
 from collections.abc import Iterable, Sequence
 from typing import Any
 
 from robotdesc._version import __version__
 from robotdesc.report.html_data import ReportData
+from robotdesc.report.html_plots import faces_plot, moments_plot, plots_available
+from robotdesc.view.findings import findings_by_link
+from robotdesc.view.html import view_fragment
 
 STYLE = """
 body{font:14px/1.45 system-ui,sans-serif;color:#1d1f24;margin:0;background:#fafbfc}
@@ -91,8 +95,6 @@ def _rules_summary(diagnostics: Sequence[Any], per_link: dict[str, list[Any]]) -
 
 
 def _findings_section(data: ReportData) -> str:
-    from robotdesc.view.findings import findings_by_link
-
     result = data.result
     per_link, others = findings_by_link(result.robot, result.diagnostics)
     if not result.diagnostics:
@@ -218,8 +220,6 @@ def collision_result_html(result: Any) -> str:
 
 
 def _plots_section(data: ReportData) -> str:
-    from robotdesc.report.html_plots import faces_plot, moments_plot, plots_available
-
     if not plots_available():
         return ('<p class="note">Plots need matplotlib: <code>pip install '
                 "'.[report]'</code>.</p>")
@@ -260,8 +260,6 @@ def _merge_alike(rows: list[tuple]) -> list[tuple]:
 
 def _spread(declared: Sequence[float], derived: Sequence[float]) -> float:
     """The largest |log10(declared / derived)| over the principal moments (0 if undefined)."""
-    import math
-
     values = [abs(math.log10(d / g)) for d, g in zip(declared, derived) if d > 0 and g > 0]
     return max(values, default=0.0)
 
@@ -270,8 +268,6 @@ def _view_section(data: ReportData) -> str:
     if data.scene is None:
         return '<p class="note">The 3D view was not included.</p>'
     from robotdesc.view.encode import scene_document
-    from robotdesc.view.findings import findings_by_link
-    from robotdesc.view.html import view_fragment
 
     per_link, _ = findings_by_link(data.result.robot, data.result.diagnostics)
     document = scene_document(data.scene, per_link)

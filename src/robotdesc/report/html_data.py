@@ -10,6 +10,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from robotdesc.mesh.settings import MeshSettings
 from robotdesc.view.scene import Scene
 
 log = logging.getLogger(__name__)
@@ -61,7 +62,6 @@ def collect_report(result: Any, *, package_paths: Sequence[str] = (),
     Raises:
         InputError: `joint_values` names an unknown, fixed or mimic joint.
     """
-    from robotdesc.mesh.settings import MeshSettings
     from robotdesc.view.scene import DEFAULT_MAX_FACES, build_scene
 
     started = time.perf_counter()

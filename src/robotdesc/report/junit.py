@@ -15,6 +15,7 @@ from typing import Any, Sequence
 from lxml import etree
 
 from robotdesc.diagnostics import Diagnostic, Severity
+from robotdesc.linting.targets import target_name
 from robotdesc.source import Span
 
 #: The name of the test case of a target that could not be checked.
@@ -45,8 +46,6 @@ def render_junit(results: Sequence[Any], failures: Sequence[Any] = (), *,
 
 
 def _result_suite(result: Any, fail_on: Severity, root: str) -> etree._Element:
-    from robotdesc.linting.targets import target_name
-
     name = target_name(result.target, getattr(result, "variant", ()), root)
     by_code: dict[str, list[Diagnostic]] = {}
     for diagnostic in result.diagnostics:
@@ -80,8 +79,6 @@ def _result_suite(result: Any, fail_on: Severity, root: str) -> etree._Element:
 
 
 def _failure_suite(failure: Any, root: str) -> etree._Element:
-    from robotdesc.linting.targets import target_name
-
     name = target_name(failure.target, getattr(failure, "variant", ()), root)
     error = failure.error
     message = getattr(error, "message", str(error))
@@ -136,6 +133,4 @@ def _location(span: Span | None, fallback: str, root: str) -> str:
 
 
 def _shown(path: str, root: str) -> str:
-    from robotdesc.linting.targets import target_name
-
     return target_name(path, (), root)

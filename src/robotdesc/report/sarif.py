@@ -19,6 +19,7 @@ from typing import Any, Sequence
 
 from robotdesc._version import __version__
 from robotdesc.diagnostics import Diagnostic, Severity
+from robotdesc.linting.targets import target_name
 from robotdesc.source import Span
 
 SARIF_VERSION = "2.1.0"
@@ -123,8 +124,6 @@ def _physical(span: Span | None, fallback: str, root: str) -> dict[str, Any]:
 
 def _result(diagnostic: Diagnostic, result: Any, index: dict[str, int],
             root: str) -> dict[str, Any]:
-    from robotdesc.linting.targets import target_name
-
     span = diagnostic.where.span if diagnostic.where else None
     stack = diagnostic.where.macro_stack if diagnostic.where else ()
     target = target_name(result.target, getattr(result, "variant", ()), root)
@@ -162,8 +161,6 @@ def _result(diagnostic: Diagnostic, result: Any, index: dict[str, int],
 
 
 def _notification(failure: Any, root: str) -> dict[str, Any]:
-    from robotdesc.linting.targets import target_name
-
     error = failure.error
     span = getattr(error, "span", None)
     target = target_name(failure.target, getattr(failure, "variant", ()), root)

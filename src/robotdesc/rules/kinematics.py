@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 from robotdesc.diagnostics import Finding, Severity
 from robotdesc.kinematics import tree
+from robotdesc.kinematics.build import KinematicBuildError, build_model
 from robotdesc.kinematics.configuration import (
     default_configuration,
     follow_mimics,
@@ -22,6 +23,8 @@ from robotdesc.kinematics.configuration import (
     zero_configuration,
 )
 from robotdesc.kinematics.mirror import mirror_pairs
+from robotdesc.kinematics.optional import PINOCCHIO_HINT, pinocchio_available
+from robotdesc.kinematics.resolve import mesh_resolver, package_lookup
 from robotdesc.model.elements import Joint, Robot
 from robotdesc.rules.registry import RuleContext, rule
 
@@ -42,8 +45,6 @@ _NOTED: set[str] = set()
 
 def _pinocchio_or_note(code: str) -> bool:
     """True when Pinocchio is importable; otherwise log (once per rule) why `code` is skipped."""
-    from robotdesc.kinematics.optional import PINOCCHIO_HINT, pinocchio_available
-
     if pinocchio_available():
         return True
     if code not in _NOTED:
@@ -79,7 +80,6 @@ def pinocchio_cannot_build(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """
     if robot.value_issues or not _pinocchio_or_note("K101"):
         return  # unreadable values are S110's; Pinocchio would refuse them too
-    from robotdesc.kinematics.build import KinematicBuildError, build_model
 
     try:
         build_model(robot)
@@ -506,7 +506,6 @@ def _self_collisions(robot: Robot, ctx: RuleContext, code: str):
         return None
     if not _pinocchio_or_note(code):
         return None
-    from robotdesc.kinematics.build import KinematicBuildError
     from robotdesc.srdf.matrix import always_in_contact, default_collisions, prepare_scene
 
     try:
@@ -616,7 +615,6 @@ def _mesh_path(robot: Robot, ctx: RuleContext):
     lookup = getattr(ctx.meshes, "lookup", None)
     if lookup is not None:
         return lambda mesh: lookup(mesh).resolution.path
-    from robotdesc.kinematics.resolve import mesh_resolver, package_lookup
 
     return mesh_resolver(robot, package_lookup(robot.source or "."))
 

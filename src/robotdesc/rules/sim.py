@@ -6,6 +6,7 @@ MuJoCo (the optional `robotdesc[sim]` extra) is imported only when the rule runs
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterator
 from dataclasses import dataclass
 
@@ -96,6 +97,4 @@ def fails_settle_test(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
 
 
 def _base_dir(robot: Robot) -> str:
-    import os
-
     return os.path.dirname(os.path.abspath(robot.source)) if robot.source else os.getcwd()

@@ -23,6 +23,7 @@ from typing import Any, Callable, Mapping, Sequence
 import numpy as np
 
 from robotdesc.model.elements import Robot
+from robotdesc.sim.backend import import_dartpy, import_mujoco
 from robotdesc.sim.convert import SceneOptions
 from robotdesc.sim.hold import HoldOptions
 from robotdesc.sim.meshes import MeshAssets
@@ -123,14 +124,10 @@ class Engine:
 
 
 def _require_mujoco() -> Any:
-    from robotdesc.sim.backend import import_mujoco
-
     return import_mujoco()
 
 
 def _require_dart() -> Any:
-    from robotdesc.sim.backend import import_dartpy
-
     return import_dartpy()
 
 

@@ -6,6 +6,8 @@ import os
 from dataclasses import dataclass
 from typing import Any, Mapping
 
+from robotdesc.expansion import ExpandOptions, expand_file
+from robotdesc.expansion.packages import package_lookup
 from robotdesc.model.elements import Robot
 from robotdesc.sim.meshes import MeshAssets
 
@@ -30,7 +32,6 @@ def load_sim_input(path: str, args: Mapping[str, str] | None = None,
     Raises:
         InputError: the file could not be expanded or parsed.
     """
-    from robotdesc.expansion import ExpandOptions, expand_file
     from robotdesc.model.parse import parse_urdf
 
     options = expand_options or ExpandOptions()
@@ -49,8 +50,6 @@ def mesh_assets_for(source: str, expand_options: Any = None,
         expand_options: `ExpandOptions` (its package paths and map are searched first).
         known: packages already resolved (name -> directory).
     """
-    from robotdesc.expansion.packages import package_lookup
-
     paths = tuple(getattr(expand_options, "package_paths", ()) or ())
     mapping = tuple(getattr(expand_options, "package_map", ()) or ())
     search = package_lookup(source, paths, mapping)

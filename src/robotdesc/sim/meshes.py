@@ -17,6 +17,7 @@ from typing import Callable
 import numpy as np
 
 from robotdesc.errors import InputError
+from robotdesc.mesh.resolve import resolve_mesh
 from robotdesc.model.elements import MeshRef
 from robotdesc.source import Span
 
@@ -77,8 +78,6 @@ class MeshAssets:
         Raises:
             SimMeshError: the reference does not resolve or the file cannot be read.
         """
-        from robotdesc.mesh.resolve import resolve_mesh
-
         resolution = resolve_mesh(ref.filename, base_dir=self._base_dir,
                                   find_package=self._find_package,
                                   allow_absolute=self._allow_absolute)

@@ -6,6 +6,7 @@ from __future__ import annotations
 import os
 from collections.abc import Callable, Sequence
 
+from robotdesc.expansion.packages import package_lookup
 from robotdesc.mesh.resolve import MeshResolution, resolve_mesh
 from robotdesc.model.elements import MeshRef, Robot
 
@@ -34,8 +35,6 @@ class MeshFiles:
                   package_map: Sequence[tuple[str, str]] = (),
                   allow_absolute: bool = False) -> MeshFiles:
         """A resolver using the expansion's package chain, searched from `robot.source`."""
-        from robotdesc.expansion.packages import package_lookup
-
         find_package = package_lookup(robot.source or os.getcwd(), package_paths, package_map)
         return cls(robot, find_package, allow_absolute)
 

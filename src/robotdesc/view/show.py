@@ -14,11 +14,14 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from robotdesc.diagnostics import Diagnostic
+from robotdesc.errors import UsageError
 from robotdesc.expansion import ExpandOptions, expand_file
 from robotdesc.linting.driver import lint_file
 from robotdesc.model.elements import Robot
 from robotdesc.model.parse import parse_urdf
 from robotdesc.output import write_output
+from robotdesc.view.findings import findings_by_link
+from robotdesc.view.html import view_page
 
 SHOW_OPTIONS = ("visual", "collision", "inertia", "findings")
 
@@ -37,8 +40,6 @@ class View:
 
     def html(self) -> str:
         """The complete, self-contained HTML page."""
-        from robotdesc.view.html import view_page
-
         return view_page(self.document)
 
     def save(self, path: str | os.PathLike[str]) -> str:
@@ -90,9 +91,7 @@ def show(target: Any, joint_values: Mapping[str, float] | None = None, *,
         robotdesc.errors.InputError: the file could not be read, or `joint_values` names an
             unknown, fixed or mimic joint.
     """
-    from robotdesc.errors import UsageError
     from robotdesc.view.encode import scene_document
-    from robotdesc.view.findings import findings_by_link
     from robotdesc.view.scene import DEFAULT_MAX_FACES, build_scene
 
     unknown = [name for name in visible if name not in SHOW_OPTIONS]
