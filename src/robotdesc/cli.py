@@ -39,11 +39,11 @@ from robotdesc.linting.targets import discover_targets, target_name
 from robotdesc.output import NO_INPUTS, RunInputs, check_output
 from robotdesc.output import write_output as write
 from robotdesc.progress import progress_for
+from robotdesc.report.formats import FORMAT_NAMES, FORMATS, render_report
 from robotdesc.report.table import render_table
 from robotdesc.report.text import render_failure, render_text
 from robotdesc.rules.fixes import FIXABLE
 
-REPORT_FORMATS = ("text", "json", "sarif", "junit", "github", "gitlab")
 BUG_REPORT_URL = "https://github.com/robotdesc/robotdesc/issues"
 
 log = logging.getLogger("robotdesc.cli")
@@ -135,10 +135,9 @@ def build_parser() -> argparse.ArgumentParser:
                            "comma-separated, repeatable)")
     lint.add_argument("--ignore", action="append", default=[], metavar="CODES",
                       help="skip these rules (added to the config's ignore)")
-    lint.add_argument("--format", choices=REPORT_FORMATS, default="text",
-                      help="output format: text (default), json, sarif (code scanning), "
-                           "junit (CI test reports), github (workflow annotations), "
-                           "gitlab (Code Quality)")
+    lint.add_argument("--format", choices=FORMAT_NAMES, default="text",
+                      help="output format: " + "; ".join(f"{f.name}: {f.summary}"
+                                                         for f in FORMATS))
     lint.add_argument("--output-file", "-o", metavar="FILE", help="write the report here")
     lint.add_argument("--fail-on", choices=("error", "warning", "info"),
                       help="lowest severity that makes the exit code 1 (default: config, "
@@ -422,27 +421,8 @@ def _render_report(fmt: str, statistics: bool, results: list, failures: list,
         from robotdesc.report.statistics import render_statistics_json, render_statistics_text
 
         return (render_statistics_json if fmt == "json" else render_statistics_text)(results)
-    if fmt == "json":
-        from robotdesc.report.json import render_json
-
-        return render_json(results, failures)
-    if fmt == "sarif":
-        from robotdesc.report.sarif import render_sarif
-
-        return render_sarif(results, failures)
-    if fmt == "junit":
-        from robotdesc.report.junit import render_junit
-
-        return render_junit(results, failures, fail_on=fail_on)
-    if fmt == "github":
-        from robotdesc.report.github import render_github
-
-        return render_github(results, failures)
-    if fmt == "gitlab":
-        from robotdesc.report.gitlab import render_gitlab
-
-        return render_gitlab(results, failures)
-
+    if fmt != "text":
+        return render_report(fmt, results, failures, fail_on)
     return None if colour else render_text(results, failures)
 
 

@@ -14,6 +14,7 @@ from view.browser import drawn_pixels, dump_dom, require_chromium, screenshot
 from view.robots import write_demo_package
 
 import robotdesc
+from robotdesc.report import html as html_module
 from robotdesc.report import html_plots
 from robotdesc.report.html import _merge_alike, render_html_report
 from robotdesc.report.html_data import collect_report
@@ -72,7 +73,7 @@ def test_view_and_plots_are_inline(report: str) -> None:
 
 def test_without_matplotlib_the_report_says_how_to_get_plots(tmp_path: Path,
                                                             monkeypatch) -> None:
-    monkeypatch.setattr(html_plots, "plots_available", lambda: False)
+    monkeypatch.setattr(html_module, "plots_available", lambda: False)
     result = robotdesc.lint(str(write_demo_package(tmp_path)))
     page = render_html_report(collect_report(result, view=False))
     assert "pip install '.[report]'" in _section(page, "plots")

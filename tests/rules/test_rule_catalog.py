@@ -4,8 +4,11 @@ from __future__ import annotations
 
 import re
 
+import pytest
+
 from robotdesc.diagnostics import Severity
 from robotdesc.rules.catalog import all_rules, get_rule
+from robotdesc.rules.registry import FAMILIES, rule
 
 CODE = re.compile(r"^[A-Z]{1,3}\d{3}$")
 NAME = re.compile(r"^[a-z0-9]+(-[a-z0-9]+)*$")
@@ -22,12 +25,15 @@ def test_codes_and_names_are_well_formed_and_unique() -> None:
 
 
 def test_families_match_code_prefixes() -> None:
-    prefixes = {"structure": "S", "joints": "J1", "mimic": "J2", "transmissions": "T",
-                "gazebo": "G", "visual": "V", "paths": "P", "xacro": "X", "meta": "RD",
-                "inertia": "I", "meshes": "M", "budget": "B", "sim": "D", "kinematics": "K",
-                "consumers": "C"}
     for rule_ in all_rules():
-        assert rule_.code.startswith(prefixes[rule_.family]), (rule_.code, rule_.family)
+        assert rule_.code.startswith(FAMILIES[rule_.family]), (rule_.code, rule_.family)
+
+
+def test_a_rule_of_an_undeclared_family_or_prefix_is_refused() -> None:
+    with pytest.raises(RuntimeError, match="FAMILIES"):
+        rule("Z999", "no-such-family", family="nowhere")(lambda robot, ctx: iter(()))
+    with pytest.raises(RuntimeError, match="FAMILIES"):
+        rule("Q101", "wrong-prefix", family="joints")(lambda robot, ctx: iter(()))
 
 
 def test_lookup_by_code_or_name() -> None:

@@ -14,13 +14,8 @@ from robotdesc import cli
 from robotdesc.expansion import ExpandOptions
 from robotdesc.linting.driver import lint_file
 from robotdesc.model.parse import parse_urdf
-from robotdesc.rules.registry import (
-    ExpansionFacts,
-    RuleContext,
-    SourceDocument,
-    get_rule,
-    run_rule,
-)
+from robotdesc.rules.catalog import get_rule
+from robotdesc.rules.registry import ExpansionFacts, RuleContext, SourceDocument, run_rule
 from robotdesc.rules.urdf_vocabulary import URDF_ELEMENTS, parents_of
 
 FIXTURES = Path(__file__).parent / "vocabulary_fixtures"

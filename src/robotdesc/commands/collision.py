@@ -18,7 +18,7 @@ import sys
 from dataclasses import replace
 
 from robotdesc.collision.limits import ENGINE_LIMITS
-from robotdesc.collision.options import CollisionOptions
+from robotdesc.collision.options import METHODS, CollisionOptions
 from robotdesc.commands.inputs import EXIT_FINDINGS, EXIT_OK, single_input
 from robotdesc.errors import UsageError
 from robotdesc.expansion import expand_file
@@ -34,7 +34,7 @@ def register(subparsers, *, common, expansion) -> None:
     parser.add_argument("inputs", nargs="+", metavar="FILE | name:=value",
                         help="the description, then xacro arguments")
     parser.add_argument("--method", default="decimate",
-                        choices=("decimate", "hull", "coacd", "primitive", "auto"))
+                        choices=METHODS)
     parser.add_argument("--out", metavar="DIR", help="output folder (required unless "
                         "only reporting with --dry-run)")
     parser.add_argument("--check", action="store_true",

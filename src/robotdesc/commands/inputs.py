@@ -1,7 +1,7 @@
 """The one description a command works on: its file, `name:=value` arguments, config and
 expansion options, read from the command line the same way by every one-file command.
 
-The config and expansion modules (lxml underneath) are imported when a command runs, so that
+The expansion package (lxml underneath) is imported when a command runs, so that
 `robotdesc --help` stays light."""
 
 from __future__ import annotations
@@ -15,11 +15,10 @@ from typing import TYPE_CHECKING
 
 from robotdesc.config import discover_config, load_config
 from robotdesc.errors import UsageError
-from robotdesc.expansion import ExpandOptions
 
 if TYPE_CHECKING:
     from robotdesc.config import Config
-    from robotdesc.expansion import ExpandOptions
+    from robotdesc.expansion import ExpandOptions  # noqa: TC004
 
 #: The exit codes every command shares.
 EXIT_OK, EXIT_FINDINGS, EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
@@ -88,6 +87,8 @@ def single_input(ns: argparse.Namespace, verb: str) -> SingleInput:
 def expand_options(ns: argparse.Namespace,
                    package_map: Sequence[tuple[str, str]] = ()) -> "ExpandOptions":
     """The expansion options of the command line (and the config's package map)."""
+    from robotdesc.expansion import ExpandOptions  # lxml underneath: not for --help
+
     if ns.timeout <= 0:
             raise UsageError("--timeout must be positive")
     return ExpandOptions(package_paths=tuple(os.path.abspath(p) for p in ns.package_path),

@@ -12,6 +12,7 @@ import sys
 import time
 from typing import Any
 
+from robotdesc.collision.options import METHODS
 from robotdesc.commands.view import add_view_arguments, load_target
 from robotdesc.config import discover_config, load_config
 from robotdesc.output import write_output
@@ -30,7 +31,7 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
     parser.add_argument("-o", "--output", required=True, metavar="HTML",
                         help="the page to write")
     parser.add_argument("--collision", metavar="METHOD",
-                        choices=("decimate", "hull", "coacd", "primitive", "auto"),
+                        choices=METHODS,
                         help="also generate collision geometry with METHOD and report how it "
                              "compares (nothing is written besides the page)")
     parser.add_argument("--jobs", "-j", type=int, default=None, metavar="N",

@@ -14,9 +14,13 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from robotdesc.errors import InputError
 from robotdesc.expansion.result import ResolvedPackage
 
 log = logging.getLogger(__name__)
+
+#: The largest package.xml read (bytes).
+_MAX_MANIFEST_BYTES = 1 << 20
 
 #: Directories never searched for packages (build products, VCS, virtual environments).
 _SKIP_DIRS = frozenset({"build", "install", "log", "node_modules", "__pycache__", "site-packages"})
@@ -29,15 +33,14 @@ _WORKSPACE_MARKERS = (".git", ".hg", ".catkin_workspace", ".colcon", "colcon.met
 def read_package_name(package_xml: str) -> str | None:
     """The `<name>` of a package.xml, or None when it cannot be read.
 
-    Parsed strictly (no DTD, no entities, no network).
+    Parsed by the one guarded parser (no DTD, entities or network; at most 1 MiB).
     """
-    from lxml import etree
+    from robotdesc.xml_input import XmlOptions, read_xml  # lxml: not for `robotdesc --help`
 
-    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
-                             huge_tree=False, recover=False)
     try:
-        root = etree.parse(package_xml, parser).getroot()
-    except (OSError, etree.XMLSyntaxError) as exc:
+        root = read_xml(package_xml, XmlOptions(what="package.xml"),
+                        max_bytes=_MAX_MANIFEST_BYTES)
+    except InputError as exc:
         log.warning("%s: cannot read package manifest: %s", package_xml, exc)
         return None
     name = root.findtext("name")

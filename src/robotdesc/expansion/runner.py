@@ -159,8 +159,9 @@ def run_worker(path: Path, args: dict[str, str], resolver: PackageResolverConfig
         os.killpg(proc.pid, signal.SIGKILL)
         proc.communicate()
         raise errors.LimitExceeded(
-            f"expansion took longer than {limits.timeout_s:g} s and was stopped "
-            "(a macro that recurses without end? raise the limit with --timeout)", Span(str(path)))
+            f"expansion took longer than {limits.timeout_s:g} s and was stopped (a long-running "
+            "expression, or a macro that recurses without end); raise the limit with --timeout",
+            Span(str(path)))
     for line in err.decode("utf-8", "replace").splitlines():
         if line.strip():
             log.warning("xacro: %s", line.translate(_PRINTABLE))

@@ -107,12 +107,24 @@ class Rule:
 _REGISTRY: dict[str, Rule] = {}
 
 
+#: Every rule family and the code prefix its rules carry (a new family is declared here).
+FAMILIES: dict[str, str] = {
+    "structure": "S", "joints": "J1", "mimic": "J2", "transmissions": "T", "gazebo": "G",
+    "visual": "V", "paths": "P", "xacro": "X", "meta": "RD", "inertia": "I", "meshes": "M",
+    "budget": "B", "sim": "D", "kinematics": "K", "consumers": "C",
+}
+
+
 def rule(code: str, name: str, *, family: str, severity: Severity | str = Severity.ERROR,
          options: type | None = None, needs: Iterable[str] = (),
          opt_in: bool = False) -> Callable[[CheckFunction], CheckFunction]:
     """Register `check` under `code`; used as a decorator."""
 
     def register(check: CheckFunction) -> CheckFunction:
+        prefix = FAMILIES.get(family)
+        if prefix is None or not code.startswith(prefix):
+            raise RuntimeError(f"rule {code}: family '{family}' is not declared in "
+                               f"rules.registry.FAMILIES with the code's prefix")
         if code in _REGISTRY:
             raise RuntimeError(f"rule code {code} registered twice")
         if any(r.name == name for r in _REGISTRY.values()):
