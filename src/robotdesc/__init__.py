@@ -14,6 +14,7 @@ Heavy modules (xacro, lxml, the rules) are imported on first use, so `import rob
 
 from __future__ import annotations
 
+import dataclasses
 import sys
 from typing import TYPE_CHECKING, Mapping, Sequence
 
@@ -32,8 +33,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from robotdesc.model.elements import Robot
 
 
-__all__ = ["__version__", "expand", "generate_collision", "html_report", "json_report", "lint", "load",
-           "mesh_inertia", "show", "to_urdf"]
+__all__ = ["__version__", "expand", "generate_collision", "html_report", "json_report", "lint",
+           "load", "mesh_inertia", "show", "to_urdf"]
 
 
 def generate_collision(robot: "Robot", method: str = "decimate", **options):
@@ -90,8 +91,6 @@ def html_report(result: "LintResult", collision=None, *,
     Returns:
         The page (write it with `Path(...).write_text(page, encoding="utf-8")`).
     """
-    import dataclasses
-
     from robotdesc.config import discover_config
     from robotdesc.report.html import render_html_report
     from robotdesc.report.html_data import collect_report
@@ -157,8 +156,6 @@ def mesh_inertia(path: str, args: Mapping[str, str] | None = None, *, source: st
     Returns:
         An `InertiaTable` (renders as a table in Jupyter; `.rows`, `.to_dict()`).
     """
-    import dataclasses
-
     from robotdesc.config import discover_config
     from robotdesc.inertia.table import InertiaTable, inertia_table
     from robotdesc.mesh.context import MeshContext

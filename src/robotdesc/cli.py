@@ -40,8 +40,9 @@ from robotdesc.output import NO_INPUTS, RunInputs, check_output
 from robotdesc.output import write_output as write
 from robotdesc.progress import progress_for
 from robotdesc.report.formats import FORMAT_NAMES, FORMATS, render_report
+from robotdesc.report.statistics import render_statistics_json, render_statistics_text
 from robotdesc.report.table import render_table
-from robotdesc.report.text import render_failure, render_text
+from robotdesc.report.text import render_failure, render_text, write_text
 from robotdesc.rules.fixes import FIXABLE
 
 BUG_REPORT_URL = "https://github.com/robotdesc/robotdesc/issues"
@@ -405,7 +406,6 @@ def _write_report(ns: argparse.Namespace, results: list, failures: list,
     colour = not ns.output_file and _use_colour(sys.stdout)
     text = _render_report(ns.format, ns.statistics, results, failures, fail_on, colour)
     if text is None:  # coloured text straight to the terminal
-        from robotdesc.report.text import write_text
 
         write_text(sys.stdout, results, failures, colour=_use_colour(sys.stdout))
     elif ns.output_file:
@@ -418,8 +418,6 @@ def _render_report(fmt: str, statistics: bool, results: list, failures: list,
                    fail_on: Any, colour: bool) -> str | None:
     """The report text (None: text format for a terminal, written by `write_text`)."""
     if statistics:
-        from robotdesc.report.statistics import render_statistics_json, render_statistics_text
-
         return (render_statistics_json if fmt == "json" else render_statistics_text)(results)
     if fmt != "text":
         return render_report(fmt, results, failures, fail_on)

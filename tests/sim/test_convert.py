@@ -18,7 +18,7 @@ from robotdesc.sim.convert import (  # noqa: E402
     rpy_to_quat,
 )
 from robotdesc.sim.meshes import MeshAssets, indexed  # noqa: E402
-from robotdesc.spatial import rpy_matrix
+from robotdesc.spatial import rpy_matrix  # noqa: E402
 
 from .sim_support import ERD, FIXTURES, load  # noqa: E402
 

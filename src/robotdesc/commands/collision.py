@@ -22,6 +22,8 @@ from robotdesc.collision.options import METHODS, CollisionOptions
 from robotdesc.commands.inputs import EXIT_FINDINGS, EXIT_OK, single_input
 from robotdesc.errors import UsageError
 from robotdesc.expansion import expand_file
+from robotdesc.expansion.packages import package_lookup
+from robotdesc.linting.inputs import run_inputs
 from robotdesc.output import check_output_dir
 from robotdesc.progress import progress_for
 
@@ -149,8 +151,6 @@ def run(ns: argparse.Namespace) -> int:
     if writing:
         from robotdesc.collision.output import write_outputs
         from robotdesc.collision.sources import link_sources
-        from robotdesc.expansion.packages import package_lookup
-        from robotdesc.linting.inputs import run_inputs
 
         found = link_sources(robot, options.source,
                              package_lookup(robot.source or os.getcwd(), package_paths,

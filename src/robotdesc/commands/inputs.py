@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 
 from robotdesc.config import discover_config, load_config
 from robotdesc.errors import UsageError
+from robotdesc.expansion import ExpandOptions
 
 if TYPE_CHECKING:
     from robotdesc.config import Config
@@ -87,8 +88,6 @@ def single_input(ns: argparse.Namespace, verb: str) -> SingleInput:
 def expand_options(ns: argparse.Namespace,
                    package_map: Sequence[tuple[str, str]] = ()) -> "ExpandOptions":
     """The expansion options of the command line (and the config's package map)."""
-    from robotdesc.expansion import ExpandOptions  # lxml underneath: not for --help
-
     if ns.timeout <= 0:
             raise UsageError("--timeout must be positive")
     return ExpandOptions(package_paths=tuple(os.path.abspath(p) for p in ns.package_path),

@@ -219,8 +219,6 @@ def _drive(ns: argparse.Namespace, source: str, loaded: Any, engine: Any, scene_
         groups = (DriveGroup("options", _names(ns.left_wheels), _names(ns.right_wheels),
                              ns.wheel_separation, ns.wheel_radius),)
     else:
-        import dataclasses
-
         groups = tuple(dataclasses.replace(
             group, separation=ns.wheel_separation or group.separation,
             radius=ns.wheel_radius or group.radius)

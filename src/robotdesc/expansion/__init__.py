@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Mapping
 
 from robotdesc import errors
+from robotdesc.cache_dir import default_cache_dir
 from robotdesc.expansion import cache
 from robotdesc.expansion.packages import PackageResolverConfig
 from robotdesc.expansion.result import Expanded, ExpansionNote, ResolvedPackage
@@ -126,8 +127,6 @@ def expand_file(path: str | Path, args: Mapping[str, str] | None = None, *,
     cache_root = Path(options.cache_dir) if options.cache_dir else None
     key = None
     if options.use_cache:
-        from robotdesc.cache_dir import default_cache_dir
-
         cache_root = cache_root or default_cache_dir()
         key = cache.cache_key({"file": str(path), "args": sorted(args.items()),
                                "resolver": resolver.__dict__, "trusted": options.trusted,

@@ -18,7 +18,7 @@ import os
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
-from robotdesc.expansion.packages import package_lookup
+from robotdesc.expansion.packages import enclosing_package, package_lookup
 from robotdesc.mesh.analyze import analyze_mesh_file
 from robotdesc.mesh.cache import MeshCache, default_cache_dir
 from robotdesc.mesh.errors import DEFAULT_LIMITS, MeshError, MeshLimits
@@ -171,8 +171,6 @@ class MeshContext:
 
     def _package_root(self, directory: str) -> str | None:
         if directory not in self._roots:
-            from robotdesc.expansion.packages import enclosing_package
-
             found = enclosing_package(directory)
             self._roots[directory] = str(found[1]) if found else None
         return self._roots[directory]

@@ -6,7 +6,7 @@ from __future__ import annotations
 import os
 from collections.abc import Callable, Sequence
 
-from robotdesc.expansion.packages import package_lookup
+from robotdesc.expansion.packages import enclosing_package, package_lookup
 from robotdesc.mesh.resolve import MeshResolution, resolve_mesh
 from robotdesc.model.elements import MeshRef, Robot
 
@@ -57,8 +57,6 @@ class MeshFiles:
 
     def _package_root(self, directory: str) -> str | None:
         if directory not in self._roots:
-            from robotdesc.expansion.packages import enclosing_package
-
             found = enclosing_package(directory)
             self._roots[directory] = str(found[1]) if found else None
         return self._roots[directory]
