@@ -11,15 +11,24 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 if TYPE_CHECKING:
     import numpy as np
 
-    from robotdesc.model.elements import Pose
-
 Vec3 = tuple[float, float, float]
 Mat3 = tuple[Vec3, Vec3, Vec3]
+
+
+class Origin(Protocol):
+    """What `pose_matrix` reads of an `<origin>` (`robotdesc.model.elements.Pose`, which is
+    not imported: the model imports this module, through its tree)."""
+
+    @property
+    def xyz(self) -> Sequence[float]: ...
+
+    @property
+    def rpy(self) -> Sequence[float]: ...
 
 #: The zero tensor.
 ZERO: Mat3 = ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
@@ -178,7 +187,7 @@ def rpy_matrix(rpy: Sequence[float]) -> "np.ndarray":
     return np.array(rpy_rotation(rpy))
 
 
-def pose_matrix(pose: "Pose") -> "np.ndarray":
+def pose_matrix(pose: Origin) -> "np.ndarray":
     """The 4x4 homogeneous transform of an `<origin>` (child frame in the parent frame; xyz in
     m, rpy in rad, URDF's fixed-axis convention)."""
     import numpy as np

@@ -7,14 +7,7 @@ command.
 from __future__ import annotations
 
 from robotdesc.model.elements import Joint, Link, Robot
-
-
-def parent_joints(robot: Robot) -> dict[str, Joint]:
-    """Child link name -> the (first) joint that has it as its child."""
-    found: dict[str, Joint] = {}
-    for joint in robot.joints:
-        found.setdefault(joint.child, joint)
-    return found
+from robotdesc.model.tree import connected_roots, parent_joint_of
 
 
 def is_moving(link: Link, parents: dict[str, Joint]) -> bool:
@@ -25,9 +18,7 @@ def is_moving(link: Link, parents: dict[str, Joint]) -> bool:
 
 def root_links(robot: Robot) -> list[Link]:
     """Links that are no joint's child but are some joint's parent (or the only link)."""
-    children = {j.child for j in robot.joints}
-    parents = {j.parent for j in robot.joints}
-    roots = [link for link in robot.links if link.name not in children and link.name in parents]
+    roots = connected_roots(robot)
     if not roots and len(robot.links) == 1:
         roots = list(robot.links)
     return roots
@@ -45,7 +36,7 @@ def is_dynamics_model(robot: Robot) -> bool:
     A purely kinematic description (for a viewer or a planner) declares none; the rules
     about missing inertia do not apply to it.
     """
-    parents = parent_joints(robot)
+    parents = parent_joint_of(robot)
     return any(is_moving(link, parents) and has_mass(link) for link in robot.links)
 
 

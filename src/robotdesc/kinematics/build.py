@@ -17,9 +17,9 @@ from typing import Any
 
 from robotdesc.errors import InputError
 from robotdesc.kinematics.optional import import_pinocchio
-from robotdesc.kinematics.tree import tree_problem
 from robotdesc.kinematics.urdf_text import MeshPath, pinocchio_urdf
 from robotdesc.model.elements import Robot
+from robotdesc.model.tree import tree_problem
 from robotdesc.source import Provenance
 
 _NAMES = re.compile(r"\[([^\]]*)\]")

@@ -9,9 +9,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from robotdesc.model.elements import Joint, Robot
-
-#: Joint types with one position variable.
-SCALAR_TYPES = frozenset({"revolute", "continuous", "prismatic"})
+from robotdesc.model.tree import SCALAR_TYPES, mimic_value
 
 
 @dataclass(frozen=True)
@@ -77,9 +75,7 @@ def follow_mimics(robot: Robot, positions: Mapping[str, float]) -> dict[str, flo
         joint = mimicking.get(name)
         if joint is None or name in visiting:
             return 0.0
-        multiplier = 1.0 if joint.mimic.multiplier is None else joint.mimic.multiplier
-        offset = 0.0 if joint.mimic.offset is None else joint.mimic.offset
-        result[name] = multiplier * value(joint.mimic.joint, visiting | {name}) + offset
+        result[name] = mimic_value(joint, value(joint.mimic.joint, visiting | {name}))
         return result[name]
 
     for name in mimicking:

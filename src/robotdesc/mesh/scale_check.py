@@ -10,6 +10,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from robotdesc.model.elements import Robot
+from robotdesc.model.tree import children_of, roots
 from robotdesc.spatial import add, compose, norm, rotate, rpy_rotation, subtract
 
 #: A mesh is suspicious when it is this many times larger than the robot (or its peers).
@@ -19,15 +20,15 @@ MIN_SUSPICIOUS_SIZE = 2.0
 
 
 def robot_size(robot: Robot) -> float:
-    """Diagonal (m) of the bounding box of all joint frame origins at zero joint values."""
-    children: dict[str, list] = {}
-    for joint in robot.joints:
-        children.setdefault(joint.parent, []).append(joint)
-    child_names = {j.child for j in robot.joints}
-    roots = [link.name for link in robot.links if link.name not in child_names]
+    """Diagonal (m) of the bounding box of all joint frame origins at zero joint values.
+
+    Plain Python over `model.tree`'s parents and children, not its numpy forward kinematics:
+    a warm lint (meshes from the cache) must not import numpy (tests/mesh/test_warm_imports).
+    """
+    children = children_of(robot)
     identity = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
     points = []
-    stack = [(name, identity, (0.0, 0.0, 0.0)) for name in roots]
+    stack = [(link.name, identity, (0.0, 0.0, 0.0)) for link in roots(robot)]
     seen = set()
     while stack:
         name, rotation, position = stack.pop()

@@ -1,13 +1,16 @@
 """A short summary of a `Robot` for `repr()` and Jupyter: counts, mass, DoF and the top of
 its kinematic tree; never the whole model (a large robot's full repr runs to megabytes).
 
-Plain functions over the model's attributes (no import of `elements`, which imports this).
+Plain functions over the model's attributes (no import of `elements`, which imports this);
+the tree is `model/tree.py`'s.
 """
 
 from __future__ import annotations
 
 import html
 from typing import Any
+
+from robotdesc.model.tree import children_of, roots
 
 #: Links shown in the tree of the HTML summary, and levels below the root.
 TREE_LINKS = 12
@@ -31,16 +34,13 @@ def degrees_of_freedom(robot: Any) -> int:
 
 def root_links(robot: Any) -> list[str]:
     """Links that are no joint's child, in document order."""
-    children = {joint.child for joint in robot.joints}
-    return [link.name for link in robot.links if link.name not in children]
+    return [link.name for link in roots(robot)]
 
 
 def tree_lines(robot: Any, max_links: int = TREE_LINKS, max_depth: int = TREE_DEPTH) -> list[str]:
     """The top of the tree as indented lines (`└ joint (type) → link`), cut at `max_links`
     lines and `max_depth` levels, saying how many links were left out."""
-    below: dict[str, list[Any]] = {}
-    for joint in robot.joints:
-        below.setdefault(joint.parent, []).append(joint)
+    below = children_of(robot)
     lines: list[str] = []
     shown = 0
 

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 from robotdesc.diagnostics import Finding, Severity
 from robotdesc.inertia.links import is_dynamics_model
+from robotdesc.model import tree
 from robotdesc.model.elements import Joint, Link, Robot
 from robotdesc.rules.registry import RuleContext, rule
 
@@ -49,49 +50,17 @@ def _preserved(robot: Robot) -> set[str]:
 
 def gazebo_bodies(robot: Robot) -> dict[str, GazeboBody]:
     """Head link name -> the body libsdformat makes of it (fixed joints lumped)."""
-    preserved = _preserved(robot)
-    parents = {}
-    for joint in robot.joints:
-        parents.setdefault(joint.child, joint)
-    head: dict[str, str] = {}
-    for link in robot.links:
-        name, seen = link.name, {link.name}
-        while name in parents and parents[name].type == "fixed" \
-                and parents[name].name not in preserved and parents[name].parent not in seen:
-            name = parents[name].parent
-            seen.add(name)
-        head[link.name] = name
+    parents = tree.parent_joint_of(robot)
+    head = tree.body_of(robot, keep=_preserved(robot))
     members: dict[str, list[str]] = {}
     for link in robot.links:
         members.setdefault(head[link.name], []).append(link.name)
     bodies = {}
     for name, links in members.items():
-        mass = sum(_mass(robot.link(n)) for n in links)
+        mass = sum(tree.link_mass(robot.link(n)) for n in links)
         ordered = [name] + [n for n in links if n != name]
         bodies[name] = GazeboBody(name, tuple(ordered), mass, parents.get(name))
     return bodies
-
-
-def _mass(link: Link | None) -> float:
-    if link is None or link.inertial is None or link.inertial.mass is None:
-        return 0.0
-    return float(link.inertial.mass)
-
-
-def _below(robot: Robot, link: str) -> list[str]:
-    """`link` and every link below it, in tree order (cycle-safe)."""
-    children: dict[str, list[str]] = {}
-    for joint in robot.joints:
-        children.setdefault(joint.parent, []).append(joint.child)
-    found, todo, seen = [], [link], {link}
-    while todo:
-        name = todo.pop(0)
-        found.append(name)
-        for child in children.get(name, ()):
-            if child not in seen:
-                seen.add(child)
-                todo.append(child)
-    return found
 
 
 def _names(links: list[str], limit: int = 8) -> str:
@@ -157,7 +126,7 @@ def gazebo_drops_massless_body(robot: Robot, ctx: RuleContext) -> Iterator[Findi
             continue  # a body on a fixed joint exists only when the joint is preserved
         if not _moving_children(robot, body):
             continue
-        lost = _below(robot, body.head)
+        lost = tree.subtree(robot, body.head)
         link = robot.link(body.head)
         yield Finding(f"link '{body.head}' ({joint.type} joint '{joint.name}') has no mass, so "
                       f"Gazebo's URDF->SDF conversion drops it and everything below it: "
@@ -212,7 +181,7 @@ def gazebo_drops_model(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
         if not moving:
             continue
         link = robot.link(body.head)
-        lost = _below(robot, body.head)
+        lost = tree.subtree(robot, body.head)
         yield Finding(f"root link '{body.head}' has no mass and moving joint(s) "
                       f"({_names([j.name for j in moving], 4)}): Gazebo's URDF->SDF "
                       f"conversion drops it and all {len(lost)} links below it, leaving an "
@@ -318,7 +287,7 @@ def pybullet_default_inertia(robot: Robot, ctx: RuleContext) -> Iterator[Finding
     """
     if not is_dynamics_model(robot):
         return
-    parents = {j.child: j for j in robot.joints}
+    parents = tree.parent_joint_of(robot)
     for link in robot.links:
         if link.inertial is None and link.name in parents:
             joint = parents[link.name]

@@ -17,10 +17,10 @@ from robotdesc.inertia.links import (
     is_dynamics_model,
     is_moving,
     link_element,
-    parent_joints,
     root_links,
 )
 from robotdesc.model.elements import Link, Robot
+from robotdesc.model.tree import parent_joint_of
 from robotdesc.rules.registry import RuleContext, rule
 from robotdesc.spatial import (
     MAX_MATERIAL_DENSITY,
@@ -92,7 +92,7 @@ def moving_link_without_inertial(robot: Robot, ctx: RuleContext) -> Iterator[Fin
     """
     if not is_dynamics_model(robot):
         return
-    parents = parent_joints(robot)
+    parents = parent_joint_of(robot)
     for link in robot.links:
         if link.inertial is None and is_moving(link, parents):
             joint = parents[link.name]
@@ -139,7 +139,7 @@ def non_positive_mass(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     </robot>
     ```
     """
-    parents = parent_joints(robot)
+    parents = parent_joint_of(robot)
     for link in robot.links:
         inertial = link.inertial
         if inertial is None or inertial.mass is None:
@@ -196,7 +196,7 @@ def inertia_not_positive_definite(robot: Robot, ctx: RuleContext) -> Iterator[Fi
     </robot>
     ```
     """
-    parents = parent_joints(robot)
+    parents = parent_joint_of(robot)
     for link in robot.links:
         inertial = link.inertial
         if inertial is None or inertial.inertia is None or not has_mass(link):
@@ -483,7 +483,7 @@ def fixed_link_without_inertial(robot: Robot, ctx: RuleContext) -> Iterator[Find
     """
     if not is_dynamics_model(robot):
         return
-    parents = parent_joints(robot)
+    parents = parent_joint_of(robot)
     for link in robot.links:
         joint = parents.get(link.name)
         if link.inertial is None and joint is not None and joint.type == "fixed":

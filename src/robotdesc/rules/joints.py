@@ -8,16 +8,16 @@ from dataclasses import dataclass
 
 from robotdesc.diagnostics import Finding, Severity
 from robotdesc.model.elements import Robot
+from robotdesc.model.tree import LIMITED_TYPES, SCALAR_TYPES
 from robotdesc.rules.registry import RuleContext, rule
 
 FAMILY = "joints"
 
 #: The joint types URDF defines.
 JOINT_TYPES = frozenset({"revolute", "continuous", "prismatic", "fixed", "floating", "planar"})
-#: Joint types whose `<limit>` is required.
-LIMITED_TYPES = frozenset({"revolute", "prismatic"})
-#: Joint types that read `<limit effort velocity>`.
-ACTUATED_TYPES = frozenset({"revolute", "continuous", "prismatic"})
+#: Joint types whose `<limit>` is required: `tree.LIMITED_TYPES`.
+#: Joint types that read `<limit effort velocity>`: the one-variable ones.
+ACTUATED_TYPES = SCALAR_TYPES
 #: Joint types whose `<axis>` matters (planar: the plane's normal).
 AXIS_TYPES = frozenset({"revolute", "continuous", "prismatic", "planar"})
 

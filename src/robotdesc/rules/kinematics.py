@@ -13,7 +13,6 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 
 from robotdesc.diagnostics import Finding, Severity
-from robotdesc.kinematics import tree
 from robotdesc.kinematics.build import KinematicBuildError, build_model
 from robotdesc.kinematics.configuration import (
     default_configuration,
@@ -25,6 +24,7 @@ from robotdesc.kinematics.configuration import (
 from robotdesc.kinematics.mirror import mirror_pairs
 from robotdesc.kinematics.optional import PINOCCHIO_HINT, pinocchio_available
 from robotdesc.kinematics.resolve import mesh_resolver, package_lookup
+from robotdesc.model import tree
 from robotdesc.model.elements import Joint, Robot
 from robotdesc.rules.registry import RuleContext, rule
 

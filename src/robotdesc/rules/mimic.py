@@ -6,18 +6,13 @@ from collections.abc import Iterator
 
 from robotdesc.diagnostics import Finding, Severity
 from robotdesc.model.elements import Joint, Robot
+from robotdesc.model.tree import mimicking
 from robotdesc.rules.registry import RuleContext, rule
 
 FAMILY = "mimic"
 
 #: What a joint moves along: joints of the same motion can follow each other.
 _MOTION = {"revolute": "rotation", "continuous": "rotation", "prismatic": "translation"}
-
-
-def _mimicking(robot: Robot) -> Iterator[tuple[Joint, str]]:
-    for joint in robot.joints:
-        if joint.mimic is not None and joint.mimic.joint:
-            yield joint, joint.mimic.joint
 
 
 @rule("J201", "mimic-target-missing", family=FAMILY, severity=Severity.ERROR)
@@ -59,7 +54,7 @@ def mimic_target_missing(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     ```
     """
     names = {joint.name for joint in robot.joints}
-    for joint, target in _mimicking(robot):
+    for joint, target in mimicking(robot):
         if target not in names:
             yield Finding(f"joint '{joint.name}' mimics joint '{target}', which is not defined",
                           joint.mimic.where or joint.where, f"joint:{joint.name}")
@@ -95,7 +90,7 @@ def mimic_of_itself(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     </robot>
     ```
     """
-    for joint, target in _mimicking(robot):
+    for joint, target in mimicking(robot):
         if target == joint.name:
             yield Finding(f"joint '{joint.name}' mimics itself",
                           joint.mimic.where or joint.where, f"joint:{joint.name}")
@@ -142,7 +137,7 @@ def mimic_type_mismatch(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     joints = {}
     for joint in robot.joints:
         joints.setdefault(joint.name, joint)
-    for joint, target_name in _mimicking(robot):
+    for joint, target_name in mimicking(robot):
         target = joints.get(target_name)
         if target is None or target is joint:
             continue
@@ -196,7 +191,7 @@ def mimic_cycle(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """
     follows: dict[str, str] = {}
     first: dict[str, Joint] = {}
-    for joint, target in _mimicking(robot):
+    for joint, target in mimicking(robot):
         follows.setdefault(joint.name, target)
         first.setdefault(joint.name, joint)
     order = {joint.name: i for i, joint in reversed(list(enumerate(robot.joints)))}

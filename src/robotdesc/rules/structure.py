@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-from collections import defaultdict
 from collections.abc import Iterator
 
 from robotdesc.diagnostics import Finding, Severity
+from robotdesc.model import tree
 from robotdesc.model.elements import Joint, Link, Robot
 from robotdesc.rules.registry import RuleContext, rule
 
@@ -70,8 +70,7 @@ def no_root_link(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """
     if not robot.links:
         return
-    children = {joint.child for joint in robot.joints}
-    if all(link.name in children for link in robot.links):
+    if not tree.roots(robot):
         yield Finding(f"robot '{robot.name}' has no root link: each of its "
                       f"{len(robot.links)} links is the child of a joint",
                       robot.where, f"robot:{robot.name}")
@@ -113,10 +112,7 @@ def multiple_root_links(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     </robot>
     ```
     """
-    children = {joint.child for joint in robot.joints}
-    parents = {joint.parent for joint in robot.joints}
-    roots = _unique_links([link for link in robot.links
-                           if link.name not in children and link.name in parents])
+    roots = _unique_links(tree.connected_roots(robot))
     if len(roots) > 1:
         names = ", ".join(f"'{link.name}'" for link in roots)
         for link in roots[1:]:
@@ -155,16 +151,10 @@ def kinematic_cycle(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     </robot>
     ```
     """
-    links = {link.name for link in robot.links}
-    edges = [joint for joint in robot.joints if joint.parent in links and joint.child in links]
-    for joint in edges:
-        if joint.parent == joint.child:
-            yield Finding(f"joint '{joint.name}' connects link '{joint.parent}' to itself",
-                          joint.where, f"joint:{joint.name}")
-    components = _strongly_connected(edges)
-    for joint in _first_joint_per_cycle(edges, components):
-        members = sorted(name for name, comp in components.items()
-                         if comp == components[joint.child])
+    for joint in tree.self_joints(robot):
+        yield Finding(f"joint '{joint.name}' connects link '{joint.parent}' to itself",
+                      joint.where, f"joint:{joint.name}")
+    for joint, members in tree.cycles(robot):
         yield Finding(f"joint '{joint.name}' closes a kinematic loop through links "
                       + ", ".join(f"'{name}'" for name in members),
                       joint.where, f"joint:{joint.name}")
@@ -197,11 +187,11 @@ def link_with_two_parents(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     </robot>
     ```
     """
-    first_parent: dict[str, Joint] = {}
+    first_parent = tree.parent_joint_of(robot)
     for joint in robot.joints:
         if not joint.child:
             continue
-        earlier = first_parent.setdefault(joint.child, joint)
+        earlier = first_parent[joint.child]
         if earlier is not joint:
             yield Finding(f"link '{joint.child}' already has parent joint '{earlier.name}'; "
                           f"joint '{joint.name}' gives it a second parent",
@@ -238,7 +228,7 @@ def disconnected_link(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """
     if len(_unique_links(robot.links)) < 2:
         return
-    mentioned = {joint.parent for joint in robot.joints} | {joint.child for joint in robot.joints}
+    mentioned = tree.mentioned_links(robot)
     for link in _unique_links(robot.links):
         if link.name not in mentioned:
             yield Finding(f"link '{link.name}' is not connected to any joint",
@@ -434,64 +424,3 @@ def _unique_links(links) -> list[Link]:
             seen.add(link.name)
             unique.append(link)
     return unique
-
-
-def _strongly_connected(edges: list[Joint]) -> dict[str, int]:
-    """Tarjan's algorithm, iterative: link name -> component id (links on edges only)."""
-    graph: dict[str, list[str]] = defaultdict(list)
-    for joint in edges:
-        graph[joint.parent].append(joint.child)
-        graph.setdefault(joint.child, [])
-    index: dict[str, int] = {}
-    low: dict[str, int] = {}
-    component: dict[str, int] = {}
-    stack: list[str] = []
-    on_stack: set[str] = set()
-    counter = 0
-    for start in graph:
-        if start in index:
-            continue
-        work = [(start, 0)]
-        while work:
-            node, position = work.pop()
-            if position == 0:
-                index[node] = low[node] = counter
-                counter += 1
-                stack.append(node)
-                on_stack.add(node)
-            successors = graph[node]
-            if position < len(successors):
-                work.append((node, position + 1))
-                nxt = successors[position]
-                if nxt not in index:
-                    work.append((nxt, 0))
-                elif nxt in on_stack:
-                    low[node] = min(low[node], index[nxt])
-                continue
-            if low[node] == index[node]:
-                while True:
-                    member = stack.pop()
-                    on_stack.discard(member)
-                    component[member] = index[node]
-                    if member == node:
-                        break
-            if work:
-                parent = work[-1][0]
-                low[parent] = min(low[parent], low[node])
-    return component
-
-
-def _first_joint_per_cycle(edges: list[Joint], components: dict[str, int]) -> list[Joint]:
-    """The first joint (document order) inside each component of two or more links."""
-    sizes: dict[int, int] = defaultdict(int)
-    for comp in components.values():
-        sizes[comp] += 1
-    reported: set[int] = set()
-    firsts = []
-    for joint in edges:
-        comp = components[joint.parent]
-        if (joint.parent != joint.child and comp == components[joint.child]
-                and sizes[comp] > 1 and comp not in reported):
-            reported.add(comp)
-            firsts.append(joint)
-    return firsts

@@ -22,6 +22,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 
 from robotdesc.errors import InputError
+from robotdesc.model import tree
 from robotdesc.model.elements import (
     Box,
     Capsule,
@@ -211,24 +212,22 @@ def build_scene(robot: Robot, meshes: MeshAssets, options: SceneOptions = SceneO
 
 
 def _tree(robot: Robot) -> tuple[Link, dict[str, list[Joint]]]:
-    """The root link and each link's child joints; refuses what is not a tree."""
-    children: dict[str, list[Joint]] = {}
-    child_names = set()
+    """The root link and each link's child joints; refuses what is not a tree (the first
+    defective joint in document order)."""
+    parents = tree.parent_joint_of(robot)
     for joint in robot.joints:
         if robot.link(joint.parent) is None or robot.link(joint.child) is None:
             raise SimModelError(f"joint '{joint.name}' connects a link that does not exist",
                                 _where(joint))
-        if joint.child in child_names:
+        if parents[joint.child] is not joint:
             raise SimModelError(f"link '{joint.child}' has two parent joints", _where(joint),
                                 joint.child)
-        child_names.add(joint.child)
-        children.setdefault(joint.parent, []).append(joint)
-    roots = [link for link in robot.links if link.name not in child_names]
+    roots = tree.roots(robot)
     if len(roots) != 1:
         names = ", ".join(link.name for link in roots) or "none (a cycle)"
         raise SimModelError(f"the links do not form one tree (roots: {names})",
                             robot.where.span if robot.where else None)
-    return roots[0], children
+    return roots[0], tree.children_of(robot)
 
 
 class _Builder:

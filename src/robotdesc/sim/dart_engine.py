@@ -27,6 +27,7 @@ from typing import Any, Iterator, Mapping, Sequence
 import numpy as np
 
 from robotdesc.model.elements import Robot
+from robotdesc.model.tree import roots
 from robotdesc.sim.backend import import_dartpy
 from robotdesc.sim.convert import SceneOptions, SimModelError
 from robotdesc.sim.dart_urdf import dart_urdf
@@ -333,6 +334,5 @@ def _flush_native() -> None:
 
 
 def _root_link(robot: Robot) -> Any:
-    children = {joint.child for joint in robot.joints}
-    roots = [link for link in robot.links if link.name not in children]
-    return roots[0] if len(roots) == 1 else None
+    heads = roots(robot)
+    return heads[0] if len(heads) == 1 else None

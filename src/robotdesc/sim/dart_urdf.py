@@ -36,8 +36,10 @@ from robotdesc.model.elements import (
     Robot,
     Sphere,
 )
+from robotdesc.model.tree import parent_joint_of
 from robotdesc.sim.convert import SimModelError
 from robotdesc.sim.meshes import MeshAssets, SimMeshError
+from robotdesc.spatial import rpy_matrix
 
 log = logging.getLogger(__name__)
 
@@ -79,7 +81,8 @@ def dart_urdf(robot: Robot, meshes: MeshAssets, scratch: str,
         SimMeshError: a mesh cannot be resolved or read.
     """
     writer = _Writer(meshes, scratch)
-    moving_children = {j.child for j in robot.joints if j.type not in ("fixed",)}
+    moving_children = {name for name, joint in parent_joint_of(robot).items()
+                       if joint.type != "fixed"}
     lines = [f"<robot name={quoteattr(robot.name or 'robot')}>"]
     for link in robot.links:
         lines.append(f"  <link name={quoteattr(link.name)}>")
@@ -189,8 +192,6 @@ class _Writer:
                 "    </collision>"]
 
     def _capsule(self, origin: Pose, capsule: Capsule) -> list[str]:
-        from robotdesc.spatial import rpy_matrix
-
         axis = rpy_matrix(origin.rpy)[:, 2] * capsule.length / 2
         lines = self.shape(origin, Cylinder(capsule.radius, capsule.length))
         for sign in (1.0, -1.0):

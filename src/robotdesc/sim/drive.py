@@ -28,6 +28,7 @@ import numpy as np
 
 from robotdesc.errors import InputError
 from robotdesc.model.elements import Cylinder, Robot, Sphere
+from robotdesc.model.tree import poses_at
 from robotdesc.sim.engine import EngineScene
 from robotdesc.spatial import rpy_matrix
 
@@ -244,7 +245,7 @@ def resolve_groups(robot: Robot, groups: Sequence[DriveGroup]) -> tuple[DriveGro
     if not groups:
         raise DriveConfigError("no drive joints: the package configures no "
                                "diff_drive_controller; give --left-wheels and --right-wheels")
-    poses = link_poses(robot)
+    poses = poses_at(robot)
     resolved = []
     for group in groups:
         if not group.left or not group.right:
@@ -263,38 +264,17 @@ def resolve_groups(robot: Robot, groups: Sequence[DriveGroup]) -> tuple[DriveGro
     return tuple(resolved)
 
 
-def link_poses(robot: Robot) -> dict[str, tuple[np.ndarray, np.ndarray]]:
-    """Each link's rotation and position in the root link's frame, joints at zero."""
-    children: dict[str, list[Any]] = {}
-    child_links = set()
-    for joint in robot.joints:
-        children.setdefault(joint.parent, []).append(joint)
-        child_links.add(joint.child)
-    poses: dict[str, tuple[np.ndarray, np.ndarray]] = {}
-    stack = [(link.name, np.identity(3), np.zeros(3)) for link in robot.links
-             if link.name not in child_links]
-    while stack:
-        name, rotation, position = stack.pop()
-        if name in poses:
-            continue
-        poses[name] = (rotation, position)
-        for joint in children.get(name, ()):
-            stack.append((joint.child, rotation @ rpy_matrix(joint.origin.rpy),
-                          position + rotation @ np.asarray(joint.origin.xyz, dtype=float)))
-    return poses
-
-
 def wheel_signs(robot: Robot, names: Iterable[str]) -> dict[str, float]:
     """+1 or -1 per wheel joint: the sign of joint velocity that rolls the robot forward.
 
     Raises:
         DriveConfigError: a wheel's axis is vertical or along the forward direction.
     """
-    poses = link_poses(robot)
+    poses = poses_at(robot)
     signs = {}
     for name in names:
         joint = robot.joint(name)
-        rotation, _ = poses[joint.parent]
+        rotation = poses[joint.parent][:3, :3]
         axis = rotation @ rpy_matrix(joint.origin.rpy) @ np.asarray(
             joint.axis if joint.axis is not None else (1.0, 0.0, 0.0), dtype=float)
         forward = float(np.cross(axis, (0.0, 0.0, 1.0))[0])  # rolling: v = w r (axis x z)
@@ -313,10 +293,11 @@ def _wheel_radius(robot: Robot, names: Sequence[str]) -> float | None:
     return None
 
 
-def _separation(robot: Robot, poses: Mapping[str, tuple[np.ndarray, np.ndarray]],
+def _separation(robot: Robot, poses: Mapping[str, np.ndarray],
                 group: DriveGroup) -> float | None:
+    """Mean y (m) of the left wheels minus that of the right, in the root link's frame."""
     def mean_y(names: Sequence[str]) -> float:
-        return float(np.mean([poses[robot.joint(n).child][1][1] for n in names]))
+        return float(np.mean([poses[robot.joint(n).child][1, 3] for n in names]))
 
     separation = mean_y(group.left) - mean_y(group.right)
     return separation if separation > 0 else None

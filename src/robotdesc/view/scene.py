@@ -18,8 +18,8 @@ import numpy as np
 
 from robotdesc.mesh.validate import MeshError
 from robotdesc.model.elements import Collision, MeshRef, Robot, Visual
+from robotdesc.model.tree import configuration, poses_at
 from robotdesc.spatial import pose_matrix
-from robotdesc.view.forward import configuration, poses_at
 from robotdesc.view.inertia_box import InertiaBox, inertia_box
 from robotdesc.view.mesh_files import MeshFiles
 from robotdesc.view.shapes import primitive_mesh
