@@ -12,11 +12,11 @@ import pytest
 
 pytest.importorskip("pinocchio")
 
+from support import REPO, example_robot_data_dir  # noqa: E402
+
 import robotdesc  # noqa: E402
 from robotdesc.kinematics.resolve import mesh_resolver, package_lookup  # noqa: E402
 from robotdesc.srdf.matrix import Reason, compute_matrix, default_collisions, prepare_scene  # noqa: E402
-
-from support import REPO, example_robot_data_dir  # noqa: E402
 
 ROBOTS = example_robot_data_dir()
 pytestmark = pytest.mark.skipif(ROBOTS is None, reason="example-robot-data is not installed")
@@ -24,9 +24,10 @@ pytestmark = pytest.mark.skipif(ROBOTS is None, reason="example-robot-data is no
 #: (URDF, published SRDF, pairs robotdesc disables as Adjacent/Default that the SRDF keeps).
 CASES = [
     ("panda_description/urdf/panda.urdf", "panda_description/srdf/panda.srdf", set()),
-    # ur5.srdf predates the ee_link collision box: wrist_3_link carries ee_link (Adjacent).
+    # ur5.srdf predates the ee_link collision box: wrist_3_link carries ee_link (Adjacent);
+    # ee_link is welded to wrist_3_link, so one body with it, adjacent to wrist_2_link.
     ("ur_description/urdf/ur5_robot.urdf", "ur_description/srdf/ur5.srdf",
-     {("ee_link", "wrist_3_link")}),
+     {("ee_link", "wrist_3_link"), ("ee_link", "wrist_2_link")}),
     ("ur_description/urdf/ur5_gripper.urdf", "ur_description/srdf/ur5_gripper.srdf", set()),
     ("ur_description/urdf/ur3_gripper.urdf", "ur_description/srdf/ur3_gripper.srdf", set()),
     ("ur_description/urdf/ur5_joint_limited_robot.urdf",
@@ -56,12 +57,21 @@ def test_adjacent_and_default_pairs_are_disabled_in_the_published_srdf(urdf, srd
     assert ours - set(published(srdf)) == differences
 
 
+#: Links welded by fixed joints are one body (issue 14, item 2): the hand, welded to link7
+#: through link8, is adjacent to link6, and the fingers, joined to the hand, to link7. The
+#: published SRDF disables these pairs too, as "Never".
+PANDA_WELDED_ADJACENT = {("panda_hand", "panda_link6"), ("panda_leftfinger", "panda_link7"),
+                         ("panda_link7", "panda_rightfinger")}
+
+
 def test_panda_adjacent_and_default_reasons_match_exactly() -> None:
     path = ROBOTS / CASES[0][0]
     robot = robotdesc.load(str(path))
     prepared = prepare_scene(robot, mesh_path(path, robot))
     theirs = published(CASES[0][1])
-    assert set(prepared.adjacent) == {p for p, r in theirs.items() if r == "Adjacent"}
+    assert set(prepared.adjacent) - PANDA_WELDED_ADJACENT \
+        == {p for p, r in theirs.items() if r == "Adjacent"}
+    assert all(theirs[pair] == "Never" for pair in PANDA_WELDED_ADJACENT)
     assert set(default_collisions(prepared)) == {p for p, r in theirs.items() if r == "Default"}
 
 

@@ -2,10 +2,10 @@ import pytest
 
 pytest.importorskip("pinocchio")
 
+from kinematics.robots import ARM, INERTIA, robot  # noqa: E402
+
 import robotdesc.srdf.matrix as matrix_module  # noqa: E402
 from robotdesc.srdf.matrix import Reason, compute_matrix  # noqa: E402
-
-from kinematics.robots import ARM, INERTIA, robot  # noqa: E402
 
 #: b (a small sphere) always sits inside a's box; "orbit" slides through it half the time;
 #: m carries a sphere far above, so a and b are not adjacent. "far" hangs on a (locked)
@@ -84,3 +84,49 @@ def test_links_welded_by_fixed_joints_are_adjacent_as_in_moveit() -> None:
     found = reasons(matrix)
     assert found[("hand_sc", "link7")] is Reason.ADJACENT  # one rigid body
     assert found[("finger", "link7")] is Reason.ADJACENT  # a joint connects the bodies
+
+
+def test_counts_equal_checking_every_pair_in_every_sample() -> None:
+    """The broad phase, the pairs that cannot meet and the rigid pairs change nothing: the
+    counts of the pairs sampled to the end are those of checking each sample with coal."""
+    from robotdesc.srdf.matrix import collisions_at, prepare_scene
+    from robotdesc.srdf.sampling import sample_positions
+    from srdf.test_reach import ROVER
+
+    for text in (ALWAYS, ROVER, ARM):
+        model = robot(text)
+        matrix = compute_matrix(model, lambda mesh: None, samples=120, seed=3, workers=1,
+                                adaptive=False)
+        prepared = prepare_scene(model, lambda mesh: None)
+        names, positions = sample_positions(model, 120, 3)
+        brute: dict[tuple[str, str], int] = {}
+        for row in positions:
+            for pair in collisions_at(prepared, dict(zip(names, row.tolist()))):
+                brute[pair] = brute.get(pair, 0) + 1
+        for pair in matrix.pairs:
+            if pair.reason is Reason.ADJACENT or pair.samples < 120:
+                continue  # adjacent: not checked; fewer samples: left the rounds early
+            assert pair.collisions == brute.get((pair.link1, pair.link2), 0), pair
+
+
+def test_pairs_that_cannot_meet_are_never_with_every_sample_counted() -> None:
+    from srdf.test_reach import ROVER
+
+    matrix = compute_matrix(robot(ROVER), lambda mesh: None, samples=100, seed=0, workers=1)
+    far = next(p for p in matrix.pairs if (p.link1, p.link2) == ("far", "wheel"))
+    assert far.reason is Reason.NEVER and far.samples == 100 and far.collisions == 0
+
+
+def test_adaptive_sampling_stops_once_the_classes_stay_the_same() -> None:
+    from srdf.test_reach import ROVER
+
+    seen = []
+    matrix = compute_matrix(robot(ROVER), lambda mesh: None, samples=50000, seed=0, workers=1,
+                            progress=seen.append)
+    assert matrix_module.ADAPTIVE_MIN_SAMPLES <= matrix.samples < 50000
+    assert seen[-1].samples == matrix.samples and seen[-1].limit == 50000
+    assert matrix.samples - seen[-1].changed_at >= matrix.samples / 2
+    full = compute_matrix(robot(ROVER), lambda mesh: None, samples=8000, seed=0, workers=1,
+                          adaptive=False)
+    assert full.samples == 8000
+    assert [p.reason for p in full.pairs] == [p.reason for p in matrix.pairs]

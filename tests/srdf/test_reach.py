@@ -5,9 +5,9 @@ import pytest
 from kinematics.robots import ARM, INERTIA, robot
 
 from robotdesc.kinematics.geometry import collision_shapes
+from robotdesc.model.tree import joint_motion
 from robotdesc.spatial import pose_matrix
 from robotdesc.srdf.reach import Sphere, joint_ranges, reach, spin_only, sweep
-from robotdesc.view.forward import joint_motion
 
 #: a base box; a wheel (cylinder along its spin axis y) on a continuous joint; an arm on a
 #: limited revolute joint whose tip box can reach the base only when turned down; a far box

@@ -1,8 +1,7 @@
 import numpy as np
+from kinematics.robots import ARM, robot
 
 from robotdesc.srdf.sampling import sample_positions
-
-from kinematics.robots import ARM, robot
 
 
 def test_samples_stay_within_limits_and_mimics_follow() -> None:

@@ -5,9 +5,9 @@ from lxml import etree
 
 pytest.importorskip("pinocchio")
 
-from robotdesc.srdf import compute_matrix, render_report, render_srdf  # noqa: E402
-
 from kinematics.robots import ARM, robot  # noqa: E402
+
+from robotdesc.srdf import compute_matrix, render_report, render_srdf  # noqa: E402
 
 
 def test_srdf_is_valid_xml_with_one_element_per_disabled_pair() -> None:

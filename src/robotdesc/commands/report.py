@@ -17,6 +17,7 @@ from robotdesc.commands.view import add_view_arguments, load_target
 from robotdesc.config import discover_config, load_config
 from robotdesc.output import write_output
 from robotdesc.progress import progress_for
+from robotdesc.view.forward import parse_assignments
 
 
 def register(subparsers: Any, *, common: argparse.ArgumentParser,
@@ -44,7 +45,6 @@ def run_report(ns: argparse.Namespace) -> int:
     """The handler: lint, gather, render, write."""
     from robotdesc.report.html import render_html_report
     from robotdesc.report.html_data import collect_report
-    from robotdesc.view.forward import parse_assignments
 
     started = time.perf_counter()
     values = parse_assignments(ns.q)

@@ -12,6 +12,11 @@ import os
 import sys
 from typing import Any
 
+from robotdesc.errors import UsageError
+from robotdesc.kinematics.optional import import_pinocchio
+from robotdesc.output import check_output, write_output
+from robotdesc.progress import progress_for
+
 log = logging.getLogger(__name__)
 
 
@@ -32,7 +37,11 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
                         help="write the JSON report here (default: next to -o as "
                              "NAME.collisions.json)")
     parser.add_argument("--samples", type=int, default=10000, metavar="N",
-                        help="random configurations to check (default: 10000)")
+                        help="the most random configurations to check (default: 10000); "
+                             "sampling stops earlier once no pair changed class over the "
+                             "later half of the samples")
+    parser.add_argument("--all-samples", action="store_true",
+                        help="check all N samples (no adaptive stop)")
     parser.add_argument("--seed", type=int, default=0, metavar="S",
                         help="random seed; the same seed gives the same file (default: 0)")
     parser.add_argument("--jobs", type=int, default=2, metavar="J",
@@ -48,9 +57,6 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
 def run_srdf(ns: argparse.Namespace) -> int:
     """The handler: expand, compute the matrix, write SRDF and report; exit 0 (2 on bad input)."""
     from robotdesc.commands.info import load_robot
-    from robotdesc.errors import UsageError
-    from robotdesc.kinematics.optional import import_pinocchio
-    from robotdesc.output import check_output, write_output
     from robotdesc.srdf import compute_matrix, render_report, render_srdf
 
     import_pinocchio("robotdesc srdf")
@@ -64,9 +70,14 @@ def run_srdf(ns: argparse.Namespace) -> int:
     if ns.output and report_path and os.path.realpath(ns.output) == \
             os.path.realpath(report_path):
         raise UsageError("-o and --report name the same file")
-    matrix = compute_matrix(robot, mesh_path, samples=ns.samples, seed=ns.seed,
-                            workers=ns.jobs, always_fraction=ns.always_fraction,
-                            convex=ns.convex)
+    with progress_for(ns, "srdf", total=ns.samples, unit="samples") as bar:
+        bar.update(0, detail="preparing the collision scene")
+        matrix = compute_matrix(
+            robot, mesh_path, samples=ns.samples, seed=ns.seed, workers=ns.jobs,
+            always_fraction=ns.always_fraction, convex=ns.convex,
+            adaptive=not ns.all_samples, progress=lambda state: bar.update(
+                state.samples, state.limit, f"{state.sampled_pairs} pairs still sampled, "
+                f"last change at {state.changed_at}"))
     for problem in matrix.problems:
         log.warning("%s: collision of link '%s' left out: %s",
                     problem.where.span if problem.where else source, problem.link,

@@ -19,6 +19,7 @@ from robotdesc.expansion import expand_file
 from robotdesc.linting.driver import lint_file
 from robotdesc.linting.inputs import description_inputs, run_inputs
 from robotdesc.output import check_output, write_output
+from robotdesc.view.forward import parse_assignments
 
 log = logging.getLogger(__name__)
 
@@ -86,7 +87,6 @@ def load_target(ns: argparse.Namespace, lint: bool = True) -> tuple[Any, Any, An
 
 def run_view(ns: argparse.Namespace) -> int:
     """The handler: lint, build the scene, write the page."""
-    from robotdesc.view.forward import parse_assignments
     from robotdesc.view.show import SHOW_OPTIONS, show
 
     started = time.perf_counter()

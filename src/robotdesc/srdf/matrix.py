@@ -13,23 +13,29 @@ collision counts are sums, so the result does not depend on the number of worker
 
 from __future__ import annotations
 
-
 import enum
 import logging
 import multiprocessing
+import sys
+from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from robotdesc.kinematics import tree
 from robotdesc.kinematics.build import KinematicModel, build_model
 from robotdesc.kinematics.configuration import default_configuration
 from robotdesc.kinematics.geometry import ShapeProblem, collision_shapes
-from robotdesc.kinematics.scene import CollisionScene, SceneSpec, all_link_pairs
+from robotdesc.kinematics.scene import SceneSpec, all_link_pairs
 from robotdesc.kinematics.urdf_text import MeshPath
+from robotdesc.model import tree
 from robotdesc.model.elements import Robot
+from robotdesc.model.tree import poses_at
+from robotdesc.srdf import engine
+from robotdesc.srdf.engine import CheckSpec
+from robotdesc.srdf.forward import chain
+from robotdesc.srdf.reach import reach, shape_spheres
 from robotdesc.srdf.sampling import sample_positions
 
 log = logging.getLogger(__name__)
@@ -38,6 +44,10 @@ log = logging.getLogger(__name__)
 ALWAYS_FRACTION = 0.95
 #: Below this many samples the work stays in this process (starting workers costs ~1 s).
 PARALLEL_MIN_SAMPLES = 2000
+#: Samples per round: the classification is looked at after each.
+ROUND_SAMPLES = 500
+#: Adaptive sampling never stops before this many samples.
+ADAPTIVE_MIN_SAMPLES = 2000
 
 
 class Reason(str, enum.Enum):
@@ -171,7 +181,6 @@ def collisions_at(prepared: PreparedScene, configuration: dict[str, float],
     import coal
 
     from robotdesc.kinematics.geometry import to_coal
-    from robotdesc.view.forward import poses_at
 
     spec = prepared.spec
     robot = prepared.kinematics.robot
@@ -237,80 +246,176 @@ def _near_pairs(spec: SceneSpec, world: list[np.ndarray]) -> tuple[tuple[str, st
     return tuple(pair for pair, apart in zip(spec.pairs, gap.tolist()) if apart <= 1e-9)
 
 
+@dataclass(frozen=True)
+class Progress:
+    """Where a matrix computation stands (passed to the `progress` callback after each round).
+
+    Attributes:
+        samples: configurations checked so far.
+        limit: the most that will be checked (N).
+        sampled_pairs: pairs still being sampled.
+        changed_at: samples checked when the classification last changed.
+    """
+
+    samples: int
+    limit: int
+    sampled_pairs: int
+    changed_at: int
+
+
 def compute_matrix(robot: Robot, mesh_path: MeshPath, *, samples: int = 10000, seed: int = 0,
                    workers: int = 2, always_fraction: float = ALWAYS_FRACTION,
-                   convex: bool = False) -> CollisionMatrix:
+                   convex: bool = False, adaptive: bool = True,
+                   progress: Callable[[Progress], None] | None = None) -> CollisionMatrix:
     """The self-collision matrix of `robot`.
+
+    Pairs whose swept bounding spheres never meet are Never without sampling; pairs whose
+    geometry keeps its relative placement (only wheels spinning about their axes between
+    them) take their state at the default configuration; the rest are sampled in rounds.
 
     Args:
         robot: the parsed robot.
         mesh_path: resolves `<mesh>` references (see kinematics.resolve.mesh_resolver).
-        samples: N, random configurations to check.
-        seed: random seed; the same seed gives the same result.
+        samples: N, the most random configurations to check.
+        seed: random seed; the same seed gives the same result (whatever `workers` is).
         workers: processes checking samples in parallel (1: in this process).
         always_fraction: pairs colliding in at least this fraction of samples are "Always".
         convex: check meshes as their convex hulls (faster; may disable fewer pairs).
+        adaptive: stop before N once the classification has not changed over the later
+            half of the samples checked (and at least `ADAPTIVE_MIN_SAMPLES` were).
+        progress: called after each round of samples.
     """
     prepared = prepare_scene(robot, mesh_path, convex)
     defaults = set(default_collisions(prepared))
+    shapes = prepared.spec.shapes
+    swept = reach(robot, shapes)
+    meets = {pair: swept.can_meet(*pair) for pair in prepared.spec.pairs}
+    rigid = {pair for pair in prepared.spec.pairs if meets[pair] and swept.rigid(*pair)}
+    sampled = tuple(pair for pair in prepared.spec.pairs if meets[pair] and pair not in rigid)
+    log.info("srdf: %d pairs not adjacent: %d can never meet, %d rigid, %d to sample",
+             len(prepared.spec.pairs), sum(not m for m in meets.values()), len(rigid),
+             len(sampled))
     names, positions = sample_positions(robot, samples, seed)
     q = prepared.kinematics.configurations(names, positions)
-    counts = _count_collisions(prepared.spec, q, workers)
+    spec = CheckSpec(prepared.spec.urdf, shapes, sampled, convex, chain(robot, names),
+                     shape_spheres(shapes))
+    fixed = np.array([pair in defaults for pair in sampled], dtype=bool)
+    counts, checked, drawn = _sample_rounds(spec, positions, q, workers, always_fraction, fixed,
+                                            adaptive, progress)
+    found = {pair: (int(c), int(n)) for pair, c, n in zip(sampled, counts, checked)}
     results = [PairResult(a, b, Reason.ADJACENT) for a, b in sorted(prepared.adjacent)]
-    for pair, count in zip(prepared.spec.pairs, counts):
-        count = int(count)
-        if pair in defaults:
-            reason = Reason.DEFAULT
-        elif samples and count >= always_fraction * samples:
-            reason = Reason.ALWAYS
-        elif count == 0:
-            reason = Reason.NEVER
+    for pair in prepared.spec.pairs:
+        at_default = pair in defaults
+        if pair in found:
+            count, seen = found[pair]
         else:
-            reason = None
-        results.append(PairResult(pair[0], pair[1], reason, count, samples, pair in defaults))
+            count, seen = (drawn if at_default and pair in rigid else 0), drawn
+        results.append(PairResult(pair[0], pair[1], _reason(count, seen, at_default, drawn,
+                                                            always_fraction),
+                                  count, seen, at_default))
     results.sort(key=lambda r: (r.link1, r.link2))
     default_positions = tuple(sorted(default_configuration(robot).items()))
-    return CollisionMatrix(robot.name, tuple(results), samples, seed, always_fraction,
+    return CollisionMatrix(robot.name, tuple(results), drawn, seed, always_fraction,
                            default_positions, prepared.links_without_geometry,
                            prepared.problems, convex)
 
 
-def _count_collisions(spec: SceneSpec, q: np.ndarray, workers: int) -> np.ndarray:
-    """Per pair of `spec.pairs`: in how many rows of `q` it collides."""
-    if not spec.pairs or len(q) == 0:
-        return np.zeros(len(spec.pairs), dtype=np.int64)
-    if workers <= 1 or len(q) < PARALLEL_MIN_SAMPLES:
-        return _count_in(CollisionScene(spec), q)
-    chunks = np.array_split(q, workers * 4)
-    context = multiprocessing.get_context(_start_method())
-    with ProcessPoolExecutor(workers, mp_context=context, initializer=_start_worker,
-                             initargs=(spec,)) as pool:
-        return sum(pool.map(_count_chunk, chunks), np.zeros(len(spec.pairs), dtype=np.int64))
+def _reason(count: int, seen: int, at_default: bool, drawn: int,
+            always_fraction: float) -> Reason | None:
+    """A pair's class from its collisions in `seen` samples (of `drawn`)."""
+    if at_default:
+        return Reason.DEFAULT
+    if drawn and seen and count >= always_fraction * seen:
+        return Reason.ALWAYS
+    if count == 0:
+        return Reason.NEVER
+    return None
+
+
+def _sample_rounds(spec: CheckSpec, positions: np.ndarray, q: np.ndarray, workers: int,
+                   always_fraction: float, at_default: np.ndarray, adaptive: bool,
+                   progress: Callable[[Progress], None] | None
+                   ) -> tuple[np.ndarray, np.ndarray, int]:
+    """Check the samples round by round; a pair leaves the rounds once more samples cannot
+    change its class (Default after the first round; colliding sometimes, with more misses
+    than an Always pair may have among all N).
+
+    Returns:
+        Per pair of `spec.pairs`: collisions and samples checked; and the samples drawn.
+    """
+    limit = len(q)
+    counts = np.zeros(len(spec.pairs), dtype=np.int64)
+    checked = np.zeros(len(spec.pairs), dtype=np.int64)
+    active = np.arange(len(spec.pairs))
+    if not len(active) or not limit:
+        return counts, checked, limit
+    allowed_misses = (1.0 - always_fraction) * limit
+    classes = np.zeros(len(spec.pairs), dtype=np.int8)
+    done, changed_at = 0, 0
+    with _Checkers(spec, workers if limit >= PARALLEL_MIN_SAMPLES else 1) as checkers:
+        while done < limit and len(active):
+            end = min(limit, done + ROUND_SAMPLES)
+            counts += checkers.count(positions[done:end], q[done:end], active)
+            checked[active] += end - done
+            done = end
+            now = _classes(counts, checked, always_fraction)
+            if np.any(now != classes):
+                changed_at = done
+            classes = now
+            misses = checked - counts
+            keep = ~at_default[active] & ~((counts[active] > 0)
+                                           & (misses[active] > allowed_misses))
+            active = active[keep]
+            if progress is not None:
+                progress(Progress(done, limit, len(active), changed_at))
+            if adaptive and done >= ADAPTIVE_MIN_SAMPLES and done - changed_at >= done / 2:
+                log.info("srdf: no pair changed class over the last %d of %d samples; stopping",
+                         done - changed_at, done)
+                break
+    return counts, checked, done
+
+
+def _classes(counts: np.ndarray, checked: np.ndarray, always_fraction: float) -> np.ndarray:
+    """0 never collided, 1 sometimes, 2 always (per pair)."""
+    always = (checked > 0) & (counts >= always_fraction * checked)
+    return np.where(counts == 0, 0, np.where(always, 2, 1)).astype(np.int8)
+
+
+class _Checkers:
+    """The checker of this process, or a pool of worker processes sharing one round."""
+
+    def __init__(self, spec: CheckSpec, workers: int) -> None:
+        self.spec, self.workers = spec, workers
+        self.pool: ProcessPoolExecutor | None = None
+
+    def __enter__(self) -> "_Checkers":
+        method = _start_method()
+        if self.workers <= 1 or method == "fork":
+            engine.install(engine.PairChecker(self.spec))  # built once, inherited by forks
+        if self.workers > 1:
+            self.pool = ProcessPoolExecutor(self.workers,
+                                            mp_context=multiprocessing.get_context(method),
+                                            initializer=engine.start_worker,
+                                            initargs=(self.spec,))
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        if self.pool is not None:
+            self.pool.shutdown(cancel_futures=True)
+        engine.install(None)
+
+    def count(self, positions: np.ndarray, q: np.ndarray, active: np.ndarray) -> np.ndarray:
+        """Collisions per pair over the rows, split among the workers."""
+        if self.pool is None:
+            return engine.count_chunk((positions, q, active))
+        parts = np.array_split(np.arange(len(q)), self.workers)
+        jobs = [(positions[part], q[part], active) for part in parts if len(part)]
+        return sum(self.pool.map(engine.count_chunk, jobs),
+                   np.zeros(len(self.spec.pairs), dtype=np.int64))
 
 
 def _start_method() -> str:
     """fork on Linux (no re-import, and no `if __name__ == "__main__"` needed in a caller's
     script); spawn elsewhere (fork is unsafe on macOS)."""
-    import sys
 
     return "fork" if sys.platform.startswith("linux") else "spawn"
-
-
-def _count_in(scene: CollisionScene, q: np.ndarray) -> np.ndarray:
-    counts = np.zeros(len(scene.spec.pairs), dtype=np.int64)
-    for row in q:
-        counts += scene.colliding(row)
-    return counts
-
-
-_WORKER_SCENE: CollisionScene | None = None
-
-
-def _start_worker(spec: SceneSpec) -> None:
-    global _WORKER_SCENE
-    _WORKER_SCENE = CollisionScene(spec)
-
-
-def _count_chunk(q: np.ndarray) -> np.ndarray:
-    assert _WORKER_SCENE is not None, "worker not initialised"
-    return _count_in(_WORKER_SCENE, q)

@@ -31,8 +31,8 @@ def sample_positions(robot: Robot, count: int, seed: int) -> tuple[list[str], np
     followers = [name for name in complete if name not in names]
     if not followers:
         return names, driven
-    rows = np.empty((count, len(followers)))
-    for row in range(count):
-        values = follow_mimics(robot, dict(zip(names, driven[row])))
-        rows[row] = [values[name] for name in followers]
+    # follow_mimics is affine per joint, so whole columns go through it at once
+    values = follow_mimics(robot, {name: driven[:, k] for k, name in enumerate(names)})
+    rows = np.column_stack([np.broadcast_to(np.asarray(values[name], dtype=float), (count,))
+                            for name in followers])
     return names + followers, np.hstack([driven, rows])

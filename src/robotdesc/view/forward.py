@@ -7,10 +7,6 @@ from __future__ import annotations
 
 from robotdesc.errors import UsageError
 
-# Transitional re-exports: srdf (robotdesc.srdf.matrix, tests/srdf) still reads forward
-# kinematics from here; remove them once it imports robotdesc.model.tree.
-from robotdesc.model.tree import joint_motion, poses_at  # noqa: F401
-
 
 def parse_assignments(items: list[str] | tuple[str, ...]) -> dict[str, float]:
     """`name=value` strings (from `--q`) to a dict; radians or metres.
