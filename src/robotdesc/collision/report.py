@@ -5,26 +5,31 @@ from __future__ import annotations
 
 from robotdesc.collision.result import CollisionResult, LinkReport
 
-HEADER = ("LINK", "METHOD", "STATUS", "FACES", "HULLS", "VOL", "FWD MEAN/MAX", "BWD MEAN/MAX",
-          "HAUSD", "TIME")
+HEADER = ("LINK", "METHOD", "STATUS", "FACES", "HULLS", "VOL", "FWD mm", "BWD mm", "HAUSD",
+          "SEC")
 
 
-def render_table(result: CollisionResult) -> str:
-    """A fixed-width table; distances in mm, Hausdorff as % of the bounding diagonal."""
-    rows = [HEADER] + [_row(o.report) for o in result.outcomes]
-    widths = [max(len(r[i]) for r in rows) for i in range(len(HEADER))]
-    lines = ["  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in rows]
-    for outcome in result.outcomes:
-        for finding in outcome.report.findings:
-            lines.append(f"{outcome.report.link}: {finding.severity}: [{finding.code}] "
-                         f"{finding.message}")
+def table_rows(result: CollisionResult) -> list[tuple[str, ...]]:
+    """One row of cells per link, under `HEADER`: the largest distance from the new geometry
+    to the input (FWD) and back (BWD) in mm (the means are in the JSON), Hausdorff as % of the
+    bounding diagonal, a status ending in * when the link came from the cache."""
+    return [_row(o.report) for o in result.outcomes]
+
+
+def finding_lines(result: CollisionResult) -> list[str]:
+    """Each link's findings, one line each."""
+    return [f"{outcome.report.link}: {finding.severity}: [{finding.code}] {finding.message}"
+            for outcome in result.outcomes for finding in outcome.report.findings]
+
+
+def total_line(result: CollisionResult) -> str:
+    """The totals, comparable to Table II of the Engineer paper."""
     totals = result.totals()
     ratio = f"{totals['reduction']:.0f}:1" if totals["reduction"] else "-"
-    lines.append(f"total: {totals['written']}/{totals['links']} links, faces "
-                 f"{totals['faces_before']} -> {totals['faces_after']} ({ratio}), "
-                 f"{totals['hulls']} hulls, {totals['cached']} cached, "
-                 f"{result.seconds:.2f} s wall with {result.jobs} job(s)")
-    return "\n".join(lines) + "\n"
+    return (f"total: {totals['written']}/{totals['links']} links, "
+            f"faces {totals['faces_before']}->{totals['faces_after']} ({ratio}), "
+            f"{totals['hulls']} hulls, {totals['cached']} cached (*), "
+            f"{result.seconds:.2f} s with {result.jobs} job(s)")
 
 
 def _row(r: LinkReport) -> tuple[str, ...]:
@@ -32,9 +37,8 @@ def _row(r: LinkReport) -> tuple[str, ...]:
         return "-" if value is None else f"{1000 * value:.2f}"
 
     percent = r.percent(r.hausdorff)
-    return (r.link, r.method, r.status + (" (cached)" if r.cached else ""),
+    return (r.link, r.method, r.status + ("*" if r.cached else ""),
             f"{r.faces_before}->{r.faces_after}", str(r.hulls or "-"),
             "-" if r.volume_ratio is None else f"{r.volume_ratio:.2f}",
-            f"{mm(r.forward_mean)}/{mm(r.forward_max)}mm",
-            f"{mm(r.backward_mean)}/{mm(r.backward_max)}mm",
-            "-" if percent is None else f"{percent:.2f}%", f"{r.seconds:.2f}s")
+            mm(r.forward_max), mm(r.backward_max),
+            "-" if percent is None else f"{percent:.2f}%", f"{r.seconds:.2f}")

@@ -19,6 +19,7 @@ from dataclasses import replace
 
 from robotdesc.collision.limits import ENGINE_LIMITS
 from robotdesc.collision.options import METHODS, CollisionOptions
+from robotdesc.collision.report import HEADER, finding_lines, table_rows, total_line
 from robotdesc.commands.inputs import EXIT_FINDINGS, EXIT_OK, single_input
 from robotdesc.errors import UsageError
 from robotdesc.expansion import expand_file
@@ -26,6 +27,7 @@ from robotdesc.expansion.packages import package_lookup
 from robotdesc.linting.inputs import run_inputs
 from robotdesc.output import check_output_dir
 from robotdesc.progress import progress_for
+from robotdesc.report.table import render_table
 
 
 def register(subparsers, *, common, expansion) -> None:
@@ -164,7 +166,8 @@ def run(ns: argparse.Namespace) -> int:
     if ns.format == "json":
         sys.stdout.write(json.dumps(result.to_dict(), indent=2) + "\n")
     else:
-        from robotdesc.collision.report import render_table
-
-        sys.stdout.write(render_table(result))
+        sys.stdout.write(render_table(HEADER, table_rows(result), wrap=0,
+                                      right=(4, 5, 6, 7, 8, 9)))
+        sys.stdout.write("".join(line + "\n" for line in (*finding_lines(result),
+                                                           total_line(result))))
     return EXIT_FINDINGS if result.failed else EXIT_OK

@@ -6,6 +6,7 @@ the declared mass (the geometry alone says nothing about mass, only about its di
 
 from __future__ import annotations
 
+import textwrap
 from dataclasses import dataclass
 from typing import Any
 
@@ -111,23 +112,25 @@ def inertia_table(robot: Robot, meshes: MeshContext, tolerance: float = 0.5) -> 
 
 
 def render_table(rows: list[InertiaRow]) -> str:
-    """The rows as a fixed-width text table (one line per link, notes indented below)."""
-    header = ("LINK", "SOURCE", "MASS kg", "VOLUME m^3", "DENSITY", "COM declared",
-              "COM geometry", "MOMENTS declared", "MOMENTS geometry", "ERROR")
+    """The rows as a text table that fits 100 columns: one line per link (mass kg, volume
+    m^3, density kg/m^3, error), then its centre of mass (m) and principal moments (kg m^2),
+    declared and from the geometry, and its notes, indented below."""
+    header = ("LINK", "SOURCE", "MASS kg", "VOLUME m^3", "DENSITY", "ERROR")
     cells = [header]
     for row in rows:
         cells.append((row.link, row.source or "-", _num(row.declared_mass), _num(row.volume),
-                      _num(row.density), _vec(row.declared_com), _vec(row.derived_com),
-                      _vec(row.declared_moments), _vec(row.derived_moments),
-                      "-" if row.error is None else f"{100 * row.error:.3g}%"))
+                      _num(row.density), "-" if row.error is None else f"{100 * row.error:.3g}%"))
     widths = [max(len(line[i]) for line in cells) for i in range(len(header))]
-    out = []
-    for index, line in enumerate(cells):
+    out = ["  ".join(c.ljust(w) for c, w in zip(header, widths)).rstrip()]
+    for row, line in zip(rows, cells[1:]):
         out.append("  ".join(c.ljust(w) for c, w in zip(line, widths)).rstrip())
-        if index:
-            row = rows[index - 1]
-            out.extend(f"    {note}" for note in ((f"likely cause: {row.cause}",)
-                                                  if row.cause else ()) + row.notes)
+        out.append(f"    COM m          declared {_vec(row.declared_com):<29} "
+                   f"geometry {_vec(row.derived_com)}".rstrip())
+        out.append(f"    moments kg m^2 declared {_vec(row.declared_moments):<29} "
+                   f"geometry {_vec(row.derived_moments)}".rstrip())
+        for note in ((f"likely cause: {row.cause}",) if row.cause else ()) + row.notes:
+            out.extend(textwrap.wrap(note, 100, initial_indent="    ",
+                                     subsequent_indent="      ", break_on_hyphens=False))
     return "\n".join(out) + "\n"
 
 
