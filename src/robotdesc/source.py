@@ -28,6 +28,33 @@ class Span:
 
 
 @dataclass(frozen=True)
+class PassedValue:
+    """An attribute of a macro body whose value came in through a macro parameter.
+
+    Attributes:
+        element: the tag of the element in the body ("mass" for `<mass value="${m}"/>`).
+        attribute: the attribute's name ("value").
+        span: the call site where the value was written (through nested macros: the
+            outermost call that wrote it as text).
+    """
+
+    element: str
+    attribute: str
+    span: Span
+
+    def __str__(self) -> str:
+        return f"{self.element} {self.attribute}"
+
+
+def passed_sites(passed: tuple[PassedValue, ...]) -> list[tuple[Span, tuple[str, ...]]]:
+    """The call sites of passed values, in order, each with the values it wrote."""
+    sites: dict[Span, list[str]] = {}
+    for value in passed:
+        sites.setdefault(value.span, []).append(str(value))
+    return [(span, tuple(names)) for span, names in sites.items()]
+
+
+@dataclass(frozen=True)
 class Provenance:
     """The source of one element of an expanded URDF.
 
@@ -35,10 +62,13 @@ class Provenance:
         span: where the element is written (inside a macro body: the body's line).
         macro_stack: the call sites that produced it, innermost call first; empty when the
             element is not produced by a macro.
+        passed: the element's attributes whose values a macro call passed in, with the call
+            site that wrote each value (shown as "value passed at file:line").
     """
 
     span: Span
     macro_stack: tuple[Span, ...] = ()
+    passed: tuple[PassedValue, ...] = ()
 
     def __str__(self) -> str:
         return str(self.span)
@@ -47,8 +77,13 @@ class Provenance:
 #: Private attribute that carries an element's provenance through xacro expansion.
 #: Its value is "FILE:LINE" for the element itself, then ";FILE:LINE" per macro call site,
 #: innermost first, where FILE is an index into the expansion's file table. A call site
-#: repeated n times in a row (deep recursion) is written once as "FILE:LINE*n".
+#: repeated n times in a row (deep recursion) is written once as "FILE:LINE*n". Then, when
+#: a macro parameter gave some of the element's attribute values,
+#: "|ATTRIBUTE@FILE:LINE,ATTRIBUTE@FILE:LINE" names the call site that wrote each value.
 PROVENANCE_ATTR = "_rd_src"
+
+#: Separates the call chain from the passed values in `PROVENANCE_ATTR`.
+PASSED_SEPARATOR = "|"
 
 
 def compress_chain(sites: list[str]) -> str:
@@ -67,12 +102,29 @@ def compress_chain(sites: list[str]) -> str:
     return ";".join(parts)
 
 
+def encode_passed(values: dict[str, str]) -> str:
+    """Encode "TAG.ATTRIBUTE" -> call site ("FILE:LINE") as the attribute's passed part."""
+    return ",".join(f"{name}@{site}" for name, site in values.items())
+
+
+def decode_passed(value: str, files: tuple[str, ...]) -> tuple[PassedValue, ...]:
+    """Decode the passed part of `PROVENANCE_ATTR` (after `PASSED_SEPARATOR`)."""
+    passed: list[PassedValue] = []
+    for item in value.split(","):
+        name, _, site = item.rpartition("@")
+        element, _, attribute = name.rpartition(".")
+        index, _, line = site.partition(":")
+        passed.append(PassedValue(element, attribute, Span(files[int(index)], int(line))))
+    return tuple(passed)
+
+
 def decode_provenance(value: str, files: tuple[str, ...]) -> Provenance:
     """Decode the private attribute's value against the file table."""
+    value, _, passed = value.partition(PASSED_SEPARATOR)
     spans: list[Span] = []
     for part in value.split(";"):
         site, _, repeat = part.partition("*")
         index, _, line = site.partition(":")
         span = Span(files[int(index)], int(line))
         spans.extend([span] * (int(repeat) if repeat else 1))
-    return Provenance(spans[0], tuple(spans[1:]))
+    return Provenance(spans[0], tuple(spans[1:]), decode_passed(passed, files) if passed else ())

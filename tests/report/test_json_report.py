@@ -38,6 +38,7 @@ def test_json_report_fields(sample) -> None:
         "element": "joint:left_elbow",
         "macro_stack": [{"file": str(root / "robot.urdf.xacro"), "line": 3},
                         {"file": str(root / "robot.urdf.xacro"), "line": 4}],
+        "passed_values": [],
         "fix": '<limit lower="-1" upper="1" effort="1" velocity="1"/>',
         "fix_applicability": None,
         "target": str(root / "robot.urdf.xacro"), "variant": {},

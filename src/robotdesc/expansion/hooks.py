@@ -12,15 +12,34 @@ evaluated. Macro call tags and xacro directives lose the attribute (xacro would 
 from __future__ import annotations
 
 import os
+import re
 import xml.dom
 import xml.dom.expatbuilder
 from dataclasses import dataclass, field
 from typing import Callable
 
 from robotdesc.expansion.packages import split_package_uri
-from robotdesc.source import PROVENANCE_ATTR, compress_chain
+from robotdesc.source import PASSED_SEPARATOR, PROVENANCE_ATTR, compress_chain, encode_passed
 
 _ELEMENT = xml.dom.Node.ELEMENT_NODE
+
+#: A `${...}` expression, and a name inside one (macro parameters are plain names).
+_EXPRESSION = re.compile(r"\$\{([^}]*)\}")
+_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+#: Tags and attributes whose names can be written in the passed part (no ":", ".", "@").
+_PLAIN_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_\-]*")
+
+
+def _site(value: str) -> str:
+    """The element's own "FILE:LINE" from a provenance value (chain and passed part cut)."""
+    return value.split(";", 1)[0].split(PASSED_SEPARATOR, 1)[0]
+
+
+def _names(text: str) -> list[str]:
+    """The names used in the `${...}` expressions of an attribute's text."""
+    if "${" not in text:
+        return []
+    return [name for expression in _EXPRESSION.findall(text) for name in _NAME.findall(expression)]
 
 
 class DoctypeRefused(Exception):
@@ -52,6 +71,10 @@ class ExpansionState:
         declared_args: every `<xacro:arg>` evaluated, name -> its src.
         env_defaults: `$(optenv NAME default)` lookups of a variable that was not passed,
             as (name, default used, src); the parent knows whether NAME was set.
+        frames: per macro body being evaluated, innermost last: parameter -> the call site
+            ("FILE:LINE") that wrote its value as text.
+        pending_frames: the frames of calls whose body has not started yet (their blocks are
+            evaluated first, in the caller's frame).
     """
 
     max_macro_depth: int
@@ -62,6 +85,8 @@ class ExpansionState:
     recursion: dict[str, tuple[int, str, str]] = field(default_factory=dict)
     declared_args: dict[str, str] = field(default_factory=dict)
     env_defaults: list[tuple[str, str, str]] = field(default_factory=list)
+    frames: list[dict[str, str]] = field(default_factory=list)
+    pending_frames: list[dict[str, str]] = field(default_factory=list)
     _depth: dict[str, int] = field(default_factory=dict)
 
     def file_index(self, path: str) -> int:
@@ -173,35 +198,71 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
 
     def eval_all(node, macros, symbols):
         previous = state.last_src
+        body = node.nodeType == _ELEMENT and node.tagName == "xacro:macro" and state.pending_frames
+        if body:
+            state.frames.append(state.pending_frames.pop())
         if node.nodeType == _ELEMENT:
             own = node.getAttribute(PROVENANCE_ATTR)
             if own:
                 if state.call_stack and ";" not in own:
                     chain = compress_chain([src for src, _ in reversed(state.call_stack)])
-                    node.setAttribute(PROVENANCE_ATTR, f"{own};{chain}")
-                state.last_src = own.split(";", 1)[0]
+                    passed = _passed_values(node) if state.frames and not body else {}
+                    suffix = f"{PASSED_SEPARATOR}{encode_passed(passed)}" if passed else ""
+                    node.setAttribute(PROVENANCE_ATTR, f"{own};{chain}{suffix}")
+                state.last_src = _site(own)
         try:
             original_eval_all(node, macros, symbols)
         except BaseException:
             state.capture_error()
             raise
+        finally:
+            if body:
+                state.frames.pop()
         state.last_src = previous
+
+    def _passed_values(node) -> dict[str, str]:
+        """Attribute -> call site, for the attributes whose text uses a macro parameter."""
+        frame = state.frames[-1]
+        passed: dict[str, str] = {}
+        tag = node.tagName
+        if not _PLAIN_NAME.fullmatch(tag):
+            return passed
+        for name, text in node.attributes.items():
+            if name == PROVENANCE_ATTR or not _PLAIN_NAME.fullmatch(name):
+                continue
+            site = next((frame[used] for used in _names(text) if used in frame), None)
+            if site is not None:
+                passed[f"{tag}.{name}"] = site
+        return passed
+
+    def _call_frame(node, own: str) -> dict[str, str]:
+        """Parameter -> where its value was written, for a macro call about to run."""
+        outer = state.frames[-1] if state.frames else {}
+        frame: dict[str, str] = {}
+        for name, text in node.attributes.items():
+            if name == PROVENANCE_ATTR:
+                continue
+            frame[name] = next((outer[used] for used in _names(text) if used in outer), own)
+        return frame
 
     def handle_macro_call(node, macros, symbols):
         if node.tagName == "xacro:call" or not node.tagName.startswith("xacro:"):
             return original_macro_call(node, macros, symbols)
-        own = node.getAttribute(PROVENANCE_ATTR).split(";", 1)[0]
+        own = _site(node.getAttribute(PROVENANCE_ATTR))
         if node.hasAttribute(PROVENANCE_ATTR):
             node.removeAttribute(PROVENANCE_ATTR)
         name = node.tagName[len("xacro:"):]
         state.last_src = own or state.last_src
         _enter_macro(name, own, macros, symbols)
+        pending = len(state.pending_frames)
+        state.pending_frames.append(_call_frame(node, own))
         try:
             return original_macro_call(node, macros, symbols)
         except BaseException:
             state.capture_error()
             raise
         finally:
+            del state.pending_frames[pending:]
             state.call_stack.pop()
             state._depth[name] -= 1
 
@@ -218,7 +279,7 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
         if depth > 1 and (best is None or depth > best[0]):
             try:
                 _, _, macro = xacro.resolve_macro(name, macros, symbols)
-                defined = macro.body.getAttribute(PROVENANCE_ATTR).split(";", 1)[0]
+                defined = _site(macro.body.getAttribute(PROVENANCE_ATTR))
             except (KeyError, AttributeError):
                 defined = ""
             outermost = next(src for src, called in state.call_stack if called == name)
@@ -226,7 +287,7 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
 
     def check_attrs(tag, required, optional):
         src = tag.getAttribute(PROVENANCE_ATTR)
-        state.last_src = src.split(";", 1)[0] or state.last_src
+        state.last_src = _site(src) or state.last_src
         if tag.tagName == "xacro:arg" and tag.hasAttribute("name"):
             state.declared_args.setdefault(tag.getAttribute("name"), state.last_src)
         if not src:

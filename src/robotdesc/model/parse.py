@@ -12,6 +12,7 @@ import logging
 import math
 import re
 from collections.abc import Callable
+from dataclasses import replace
 
 from lxml import etree
 
@@ -45,13 +46,20 @@ from robotdesc.model.elements import (
     Visual,
 )
 from robotdesc.model.numbers import DEFAULT_LIMITS, NumberLimits, check_number, check_vector
-from robotdesc.source import PROVENANCE_ATTR, Provenance, Span, decode_provenance
+from robotdesc.source import (
+    PASSED_SEPARATOR,
+    PROVENANCE_ATTR,
+    Provenance,
+    Span,
+    decode_passed,
+    decode_provenance,
+)
 from robotdesc.xml_input import XmlOptions, parse_xml, start_tag_positions
 
 log = logging.getLogger(__name__)
 
 _PROVENANCE_ATTRIBUTE = re.compile(
-    rb"""[ \t\r\n]+""" + PROVENANCE_ATTR.encode() + rb"""=(?:"[0-9:;*]*"|'[0-9:;*]*')""")
+    rb"""[ \t\r\n]+""" + PROVENANCE_ATTR.encode() + rb"""=(?:"[0-9:;*|@,A-Za-z_.\-]*"|'[0-9:;*|@,A-Za-z_.\-]*')""")
 
 _MARKUP = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>|<[A-Za-z_:][^>]*>", re.DOTALL)
 
@@ -177,7 +185,8 @@ class _RobotReader:
         The elements of one macro body share their call chain, so the chain and each own
         position are decoded once and reused.
         """
-        own, _, calls = value.partition(";")
+        head, _, passed_part = value.partition(PASSED_SEPARATOR)
+        own, _, calls = head.partition(";")
         try:
             span = self._spans.get(own)
             if span is None:
@@ -190,12 +199,13 @@ class _RobotReader:
                 else:
                     chain = ()
                 self._chains[calls] = chain
+            passed = decode_passed(passed_part, self.files) if passed_part else ()
         except (ValueError, IndexError):
             log.warning("ignoring malformed provenance %r on <%s>", value, _tag(element))
             return inherited or Provenance(Span(self.path, element.sourceline or 0))
         col = self._columns.column(span, _tag(element))
         found = self._decoded[(value, element.tag)] = Provenance(
-            Span(span.path, span.line, col) if col else span, chain)
+            Span(span.path, span.line, col) if col else span, chain, passed)
         return found
 
     # -- values -----------------------------------------------------------------------------
@@ -320,18 +330,26 @@ class _RobotReader:
         origin = self.pose(kids.get("origin"), where, owner)
         mass_element = kids.get("mass")
         mass = None
+        passed = list(where.passed)
+        passed += [value for value in (origin.where.passed if origin.where else ())
+                   if value not in passed]
         if mass_element is None:
             self.issue("<inertial> has no <mass> (required)", where, owner)
         else:
-            mass = self.number(mass_element.get("value"), "<mass> value",
-                               self.where(mass_element, where), owner, required=True,
-                               bound=self.limits.mass)
+            mass_where = self.where(mass_element, where)
+            passed += [value for value in mass_where.passed if value not in passed]
+            mass = self.number(mass_element.get("value"), "<mass> value", mass_where, owner,
+                               required=True, bound=self.limits.mass)
         inertia_element = kids.get("inertia")
         inertia = None
         if inertia_element is None:
             self.issue("<inertial> has no <inertia> (required)", where, owner)
         else:
             inertia = self.inertia(inertia_element, where, owner)
+            if inertia is not None and inertia.where is not None:
+                passed += [value for value in inertia.where.passed if value not in passed]
+        if len(passed) > len(where.passed):
+            where = replace(where, passed=tuple(passed))
         return Inertial(origin, mass, inertia, where)
 
     def inertia(self, element: etree._Element, parent: Provenance, owner: str) -> Inertia | None:

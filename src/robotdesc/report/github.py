@@ -16,7 +16,7 @@ from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.linting.matrix import variant_label
 from robotdesc.linting.targets import target_name
 from robotdesc.report.text import summary_line
-from robotdesc.source import Span
+from robotdesc.source import Span, passed_sites
 
 _COMMAND = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "notice"}
 
@@ -60,6 +60,9 @@ def _annotation(diagnostic: Diagnostic, result: Any, root: str) -> str:
     if label:
         message += f" (variant {label})"
     message += "".join(f"\nin macro called from {_location(site, root)}" for site in stack)
+    message += "".join(f"\nvalue passed at {_location(site, root)} ({', '.join(names)})"
+                       for site, names in passed_sites(diagnostic.where.passed
+                                                       if diagnostic.where else ()))
     return workflow_command(
         _COMMAND[diagnostic.severity], message,
         file=_path(span.path if span else diagnostic.target or result.target, root),

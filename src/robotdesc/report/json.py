@@ -13,13 +13,17 @@ from typing import Any, Sequence
 from robotdesc._version import __version__
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.rules.fixes import fix_applicability
-from robotdesc.source import Span
+from robotdesc.source import Span, passed_sites
 
 SCHEMA_VERSION = 1
 
 _SPAN = {"type": "object", "required": ["file", "line"], "additionalProperties": False,
          "properties": {"file": {"type": "string"},
                         "line": {"type": ["integer", "null"], "minimum": 1}}}
+_PASSED = {"type": "object", "required": ["file", "line", "values"], "additionalProperties": False,
+           "properties": {"file": {"type": "string"},
+                          "line": {"type": ["integer", "null"], "minimum": 1},
+                          "values": {"type": "array", "items": {"type": "string"}}}}
 _POSITION = {"file": {"type": ["string", "null"]},
              "line": {"type": ["integer", "null"], "minimum": 1},
              "column": {"type": ["integer", "null"], "minimum": 1},
@@ -67,6 +71,7 @@ JSON_SCHEMA: dict[str, Any] = {
                            "element": {"type": "string"},
                            "fix": {"type": ["string", "null"]},
                            "fix_applicability": {"enum": ["safe", "unsafe", None]},
+                           "passed_values": {"type": "array", "items": _PASSED},
                            **_POSITION},
         }},
         "failures": {"type": "array", "items": {
@@ -91,6 +96,8 @@ def diagnostic_dict(diagnostic: Diagnostic) -> dict[str, Any]:
         **_position(span),
         "element": diagnostic.element,
         "macro_stack": [_span_dict(site) for site in stack],
+        "passed_values": [{**_span_dict(site), "values": list(names)} for site, names
+                          in passed_sites(diagnostic.where.passed if diagnostic.where else ())],
         "fix": diagnostic.fix,
         "fix_applicability": _applicability(diagnostic),
         "target": diagnostic.target,

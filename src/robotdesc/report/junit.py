@@ -16,7 +16,7 @@ from lxml import etree
 
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.linting.targets import target_name
-from robotdesc.source import Span
+from robotdesc.source import Span, passed_sites
 
 #: The name of the test case of a target that could not be checked.
 CHECK_CASE = "expand and parse"
@@ -123,6 +123,8 @@ def _finding_text(diagnostic: Diagnostic, root: str) -> str:
     lines = [f"{_location(span, diagnostic.target, root)}: {diagnostic.code} "
              f"[{diagnostic.severity}] {diagnostic.message}"]
     lines += [f"  in macro called from {_location(site, site.path, root)}" for site in stack]
+    lines += [f"  value passed at {_location(site, site.path, root)} ({', '.join(names)})"
+              for site, names in passed_sites(diagnostic.where.passed if diagnostic.where else ())]
     return "\n".join(lines)
 
 

@@ -20,7 +20,7 @@ from typing import Any, Sequence
 from robotdesc._version import __version__
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.linting.targets import target_name
-from robotdesc.source import Span
+from robotdesc.source import Span, passed_sites
 
 SARIF_VERSION = "2.1.0"
 SARIF_SCHEMA_URI = "https://json.schemastore.org/sarif-2.1.0.json"
@@ -138,11 +138,20 @@ def _result(diagnostic: Diagnostic, result: Any, index: dict[str, int],
         related.append({"id": number, "physicalLocation": _physical(site, site.path, root),
                         "message": {"text": f"macro call {number} of {len(stack)} "
                                             "(innermost first)"}})
+    sites = passed_sites(diagnostic.where.passed if diagnostic.where else ())
+    for number, (site, names) in enumerate(sites, len(related) + 1):
+        related.append({"id": number, "physicalLocation": _physical(site, site.path, root),
+                        "message": {"text": f"value passed at this call ({', '.join(names)})"}})
     if related:  # the message links its related locations: escape brackets of its own
         message = message.replace("[", "\\[").replace("]", "\\]")
-        links = " <- ".join(f"[{_short(site)}]({number})"
-                            for number, site in enumerate(stack, 1))
-        message += f" (in a macro called from {links})"
+        if stack:
+            links = " <- ".join(f"[{_short(site)}]({number})"
+                                for number, site in enumerate(stack, 1))
+            message += f" (in a macro called from {links})"
+        if sites:
+            links = ", ".join(f"[{_short(site)}]({number})"
+                              for number, (site, _) in enumerate(sites, len(stack) + 1))
+            message += f" (value passed at {links})"
     entry: dict[str, Any] = {
         "ruleId": diagnostic.code,
         "level": _LEVEL[diagnostic.severity],

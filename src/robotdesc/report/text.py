@@ -21,7 +21,7 @@ from typing import Any, Callable, Iterable, Sequence, TextIO
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.errors import InputError
 from robotdesc.linting.matrix import variant_label
-from robotdesc.source import Span
+from robotdesc.source import Span, passed_sites
 
 Segment = tuple[str, str]  # (text, rich style; "" for none)
 Line = list[Segment]
@@ -218,6 +218,10 @@ def _diagnostic_lines(diagnostic: Diagnostic, show: Callable[[str], str], cache:
     lines = [head]
     stack = diagnostic.where.macro_stack if diagnostic.where else ()
     lines.extend(_context_lines(span, stack, show, cache, show_source))
+    gutter = " " * (len(str(span.line)) if span and span.line else 1)
+    for site, names in passed_sites(diagnostic.where.passed if diagnostic.where else ()):
+        passed = f"value passed at {_location(site, show, site.path)} ({', '.join(names)})"
+        lines.append([(f"{gutter} = ", "blue"), (passed, "")])
     if diagnostic.fix:
         gutter = " " * (len(str(span.line)) if span and span.line else 1)
         fix_lines = diagnostic.fix.strip("\n").splitlines()
