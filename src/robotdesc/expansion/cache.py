@@ -21,14 +21,14 @@ import sys
 from importlib import metadata
 from pathlib import Path
 
-from robotdesc._version import __version__
+from robotdesc._version import code_id
 from robotdesc.cache_dir import read_regular_file, write_entry
 from robotdesc.expansion.result import Expanded, MacroRecursion, ResolvedPackage, decode_input_facts
 from robotdesc.source import Span
 
 log = logging.getLogger(__name__)
 
-_FORMAT = 3  # 2: declared_args and env_defaults; 3: the key inside
+_FORMAT = 4  # 2: declared_args and env_defaults; 3: the key inside; 4: passed values
 #: The largest entry read (an expanded document of a very large robot is a few MB).
 MAX_ENTRY_BYTES = 64 << 20
 
@@ -41,7 +41,7 @@ def _versions() -> dict[str, str]:
             return "unknown"
 
 
-    return {"xacro": version("xacro"), "robotdesc": __version__,
+    return {"xacro": version("xacro"), "robotdesc": code_id(),
             "python": ".".join(map(str, sys.version_info[:3]))}
 
 

@@ -20,7 +20,7 @@ from importlib import metadata
 from pathlib import Path
 from typing import Any, Iterable
 
-from robotdesc._version import __version__
+from robotdesc._version import code_id
 from robotdesc.cache_dir import read_regular_file, write_entry
 from robotdesc.diagnostics import Finding
 from robotdesc.source import Provenance, Span
@@ -59,7 +59,7 @@ def rule_key(rule: Any, options: Any, document: bytes, mesh_files: Iterable[str]
     material = json.dumps({"format": _FORMAT, "rule": rule.code, "options": repr(options),
                            "source": os.path.abspath(source) if source else "",
                            "document": hashlib.sha256(document).hexdigest(), "meshes": stats,
-                           "versions": [__version__, version("pin"), version("coal")]})
+                           "versions": [code_id(), version("pin"), version("coal")]})
     return hashlib.sha256(material.encode()).hexdigest()
 
 

@@ -1,0 +1,27 @@
+"""The caches are keyed by robotdesc's code, not only its version number."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import robotdesc
+from robotdesc import _version
+
+
+def test_code_id_changes_when_a_module_changes(tmp_path: Path, monkeypatch) -> None:
+    package = tmp_path / "robotdesc"
+    package.mkdir()
+    module = package / "rules.py"
+    module.write_text("x = 1\n")
+    (package / "_version.py").write_text("")
+    monkeypatch.setattr(_version, "__file__", str(package / "_version.py"))
+    _version.code_id.cache_clear()
+    before = _version.code_id()
+    module.write_text("x = 22\n")
+    os.utime(module, ns=(1, 1))
+    _version.code_id.cache_clear()
+    after = _version.code_id()
+    _version.code_id.cache_clear()
+    assert before != after
+    assert before.startswith(f"{robotdesc.__version__}+")
