@@ -48,6 +48,7 @@ def run(code: str, xml: str, path: str = "r.urdf", from_xacro: bool = False):
 
 
 CASES = [FIXTURES / "typos.urdf", FIXTURES / "extensions.urdf", FIXTURES / "xacro_snippet.urdf",
+         FIXTURES / "xacro_in_text.urdf",
          FIXTURES / "xacro_pkg" / "urdf" / "arm.urdf.xacro"]
 
 

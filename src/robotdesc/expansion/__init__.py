@@ -10,6 +10,7 @@ import dataclasses
 import difflib
 import logging
 import os
+import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Mapping
@@ -48,6 +49,11 @@ class ExpandOptions:
         cache_dir: the cache root (default: robotdesc.cache_dir.default_cache_dir()).
         unchecked_args: argument names not reported when no `<xacro:arg>` declares them
             (the config's default arguments, which apply to every target).
+        substitutions_in_urdf: run a file that xacro's name test would pass through (no
+            `.xacro` in its name, no `<xacro:` tag) through xacro when it holds `${...}` or
+            `$(...)` substitutions, as the xacro command does with every file it is given
+            (`robotdesc expand`). Off for the lint, which reads such a file as a URDF
+            consumer would and reports the leftover substitutions (X201).
     """
 
     package_paths: tuple[str, ...] = ()
@@ -60,11 +66,20 @@ class ExpandOptions:
     use_cache: bool = True
     cache_dir: str | None = None
     unchecked_args: tuple[str, ...] = ()
+    substitutions_in_urdf: bool = False
 
 
 def is_xacro(path: Path, head: bytes) -> bool:
     """True when the file needs xacro: a .xacro name or xacro tags in its text."""
     return ".xacro" in path.name or b"<xacro:" in head
+
+
+_SUBSTITUTION = re.compile(rb"\$\{[^}]*\}|\$\([a-z]+[^)]*\)")
+
+
+def holds_substitutions(data: bytes) -> bool:
+    """True when the text holds a xacro `${...}` expression or `$(...)` substitution."""
+    return _SUBSTITUTION.search(data) is not None
 
 
 _UNICODE_BOMS = (b"\xef\xbb\xbf", b"\xff\xfe", b"\xfe\xff")
@@ -118,7 +133,10 @@ def expand_file(path: str | Path, args: Mapping[str, str] | None = None, *,
     path = Path(path).absolute()
     data = _read_checked(path)
     if not is_xacro(path, data):
-        return Expanded(source=str(path), xml=data, files=(), files_read=(str(path),))
+        if not (options.substitutions_in_urdf and holds_substitutions(data)):
+            return Expanded(source=str(path), xml=data, files=(), files_read=(str(path),))
+        log.warning("%s: not named .xacro but holds xacro substitutions; expanded with xacro, "
+                    "as the xacro command does (a URDF reader would see them as text)", path)
     resolver = PackageResolverConfig.from_environment(str(path), options.package_paths,
                                                       options.package_map)
     names = DEFAULT_ENV_ALLOWLIST + options.env_allowlist

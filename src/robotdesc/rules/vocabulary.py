@@ -315,6 +315,9 @@ def first_xacro_use(document: SourceDocument) -> tuple[str, int] | None:
             if match:
                 return f"{etree.QName(name).localname}=\"{match.group(0)}\"", \
                     element.sourceline or 0
+        match = _SUBSTITUTION.search(element.text or "")
+        if match:
+            return f"<{etree.QName(element).localname}>{match.group(0)}", element.sourceline or 0
     return None
 
 
