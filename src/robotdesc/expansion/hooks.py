@@ -18,6 +18,7 @@ import xml.dom.expatbuilder
 from dataclasses import dataclass, field
 from typing import Callable
 
+from robotdesc.expansion.install_layout import source_of_installed
 from robotdesc.expansion.packages import split_package_uri
 from robotdesc.source import PASSED_SEPARATOR, PROVENANCE_ATTR, compress_chain, encode_passed
 
@@ -174,10 +175,19 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
     original_check_attrs = xacro.check_attrs
     original_abs_filename = xacro.abs_filename_spec
 
+    found_packages: dict[str, str] = {}  # name -> folder, as `$(find)` answered
+
+    def find(package):
+        folder = find_package(package)
+        found_packages[package] = folder
+        return folder
+
     def parse(inp, filename=None):
         if inp is not None:
             return inp if not isinstance(inp, (str, bytes)) else _parse_text(inp)
         path = os.path.abspath(os.path.join(xacro.root_dir, filename))
+        if not os.path.exists(path):
+            path = _installed_source(path) or path
         check_file(path)
         including = [os.path.abspath(f) for f in (xacro.filestack or [])[:-1] if f]
         if path in including:
@@ -192,6 +202,14 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
         except xml.parsers.expat.ExpatError as exc:
             exc.robotdesc_path = path
             raise
+
+    def _installed_source(path):
+        """The source file of a path that exists only in a package's installed layout."""
+        for package, folder in found_packages.items():
+            root = os.path.join(os.path.abspath(folder), "")
+            if path.startswith(root):
+                return source_of_installed(root.rstrip(os.sep), package, path[len(root):])
+        return None
 
     def _parse_text(text):
         return _make_builder(state, "<string>").parseString(text)
@@ -302,11 +320,11 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
     def abs_filename_spec(filename_spec):
         if isinstance(filename_spec, str) and filename_spec.startswith("package://"):
             package, rel, _ = split_package_uri(filename_spec)
-            return os.path.join(find_package(package), rel)
+            return os.path.join(find(package), rel)
         return original_abs_filename(filename_spec)
 
     def eval_find(package):
-        return find_package(package)
+        return find(package)
 
     xacro.parse = parse
     xacro.replace_node = splice_replace_node
