@@ -63,7 +63,8 @@ def _package(root: Path) -> Path:
     top = package / "description" / "urdf" / "demo.urdf.xacro"
     top.write_text(
         '<robot name="demo" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
-        '  <xacro:include filename="$(find demo_example_1)/ros2_control/demo.ros2_control.xacro"/>\n'
+        '  <xacro:include filename="$(find demo_example_1)/ros2_control/'
+        'demo.ros2_control.xacro"/>\n'
         '  <link name="base"/>\n  <xacro:demo_control/>\n</robot>\n')
     return top
 
