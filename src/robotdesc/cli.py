@@ -329,7 +329,9 @@ def _run_expand(ns: argparse.Namespace) -> int:
     known = description_inputs(source, single.config.path)
     if ns.output:
         check_output(ns.output, known)
-    expanded = expand_file(source, single.args, options=single.options)
+    # as the xacro command: a file that holds substitutions is expanded whatever its name
+    options = dataclasses.replace(single.options, substitutions_in_urdf=True)
+    expanded = expand_file(source, single.args, options=options)
     urdf = urdf_text(expanded.xml, expanded.source)
     if not ns.output:
         sys.stdout.buffer.write(urdf)
