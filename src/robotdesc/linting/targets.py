@@ -43,7 +43,11 @@ _FIND = re.compile(r"^\$\(find ([A-Za-z0-9_\-]+)\)")
 #: How deep includes are followed to decide whether a file makes a robot.
 _MAX_INCLUDE_DEPTH = 8
 
-Kind = Literal["robot", "library", "other"]
+Kind = Literal["robot", "library", "srdf", "other"]
+#: Elements of MoveIt's semantic description (SRDF), whose root is a `<robot>` too.
+_SRDF_ELEMENTS = {"group", "group_state", "disable_collisions", "enable_collisions",
+                  "disable_default_collisions", "end_effector", "virtual_joint", "passive_joint",
+                  "link_sphere_approximation", "joint_property"}
 
 
 @dataclass(frozen=True)
@@ -121,18 +125,31 @@ def discover_targets(path: str, config: Config | None = None) -> Discovery:
     configs = _Configs(config)
     if not os.path.isdir(path):
         absolute = os.path.abspath(path)
+        if path.endswith(DESCRIPTION_SUFFIXES + (".srdf",)) and is_srdf(absolute):
+            raise InputError("this is an SRDF (a MoveIt semantic description: groups, "
+                             "disabled collision pairs), not a URDF; lint the URDF it "
+                             "describes", Span(path, 1))
         specs = _specs_for(configs.for_file(absolute), absolute)
         return Discovery(path, False, tuple(_expand(absolute, configs.for_file(absolute),
                                                     specs)))
     packages = _packages_under(path)
-    robots, libraries, placeholders = [], [], []
+    robots, libraries, placeholders, semantic = [], [], [], []
     for candidate in sorted(_walk(path)):
-        if is_placeholder(candidate):
+        kind = "placeholder" if is_placeholder(candidate) else \
+            description_kind(candidate, dict(packages))
+        if kind == "placeholder":
             placeholders.append(candidate)
-        elif description_kind(candidate, dict(packages)) == "robot":
+        elif kind == "robot":
             robots.append(candidate)
+        elif kind == "srdf":
+            semantic.append(candidate)
         else:
             libraries.append(candidate)
+    if semantic:
+        log.warning("note: skipped %d SRDF file(s), MoveIt semantic descriptions rather than "
+                    "URDF: %s", len(semantic),
+                    ", ".join(target_name(f, (), path) for f in semantic[:5])
+                    + (f", ... ({len(semantic) - 5} more)" if len(semantic) > 5 else ""))
     listed = _listed_files(path, [*robots, *libraries, *placeholders], configs)
     targets, unlisted = [], []
     for file in sorted(set(robots) | set(listed)):
@@ -147,8 +164,9 @@ def discover_targets(path: str, config: Config | None = None) -> Discovery:
         log.warning("note: skipped %s: an empty <robot/> placeholder, nothing to lint",
                     target_name(file, (), path))
     if not targets and not unlisted and not skipped_placeholders:
+        only = f" (only {len(semantic)} SRDF file(s))" if semantic else ""
         raise InputError("no robot description (*.urdf, or *.xacro with a robot that is not "
-                         "only macros) under this directory", Span(path))
+                         f"only macros) under this directory{only}", Span(path))
     skipped = tuple(f for f in libraries if f not in set(listed))
     return Discovery(path, True, tuple(dict.fromkeys(targets)), skipped, tuple(unlisted),
                      skipped_placeholders, packages)
@@ -180,6 +198,8 @@ def description_kind(path: str, packages: dict[str, str] | None = None) -> Kind:
         return "robot"
     if _local_name(root) != "robot":
         return "other"
+    if is_srdf(path, root):
+        return "srdf"
     if not path.endswith(".xacro") and not _uses_xacro(root):
         return "robot"
     makes = _makes_something(path, root, packages or {}, frozenset({os.path.realpath(path)}))
@@ -187,6 +207,19 @@ def description_kind(path: str, packages: dict[str, str] | None = None) -> Kind:
 
 
 # --- helpers ------------------------------------------------------------------------------
+
+
+def is_srdf(path: str, root=None) -> bool:
+    """Whether a file is a MoveIt semantic description (SRDF, or its xacro): named
+    `*.srdf[.xacro]`, or a `<robot>` whose top level holds SRDF elements and no link or joint."""
+    if ".srdf" in os.path.basename(path).lower():
+        return True
+    root = _read_root(path) if root is None else root
+    if root is None or _local_name(root) != "robot":
+        return False
+    names = {_xacro_name(element) for element in _top_level(root)}
+    return (any(name in _SRDF_ELEMENTS for name, is_xacro in names if not is_xacro)
+            and not any(name in ("link", "joint") for name, is_xacro in names if not is_xacro))
 
 
 def _read_root(path: str):
