@@ -26,7 +26,7 @@ PACKAGE = Path(__file__).parent / "mesh_fixtures" / "mesh_pkg"
 MARKER = re.compile(r"<!--\s*expect:\s*([A-Z0-9,\s]+?)\s*(?:cause:\s*(.*?))?\s*-->")
 #: The families these fixtures are about (other families have their own fixtures).
 FAMILIES = ("inertia", "meshes", "budget")
-SETTINGS = MeshSettings(expected_mass=30.0, collision_triangle_budget=100, cache=False)
+SETTINGS = MeshSettings(expected_mass=50.0, collision_triangle_budget=100, cache=False)
 
 
 def cylinder_triangles(radius: float = 0.05, length: float = 0.2, segments: int = 64):

@@ -93,14 +93,30 @@ def _impossible_axes(link: Link, bounds) -> list[tuple[str, float, float]]:
 
 
 def _certain_violation(ctx: RuleContext, link: Link) -> tuple[list, tuple] | None:
-    """(the impossible axes, the geometry's bounds) when I204 applies to the link."""
-    if link.inertial is None or link.inertial.inertia is None or not has_mass(link):
+    """(the impossible axes, the geometry's bounds) when I204 or I206 applies to the link.
+
+    Links of a gram or less carry token values, and geometry under 5 mm across is a stand-in
+    (a marker sphere), not the body: neither is judged.
+    """
+    if link.inertial is None or link.inertial.inertia is None or not has_mass(link) \
+            or (link.inertial.mass or 0.0) <= PLACEHOLDER_MASS:
         return None
     bounds = _union_bounds(_both_sources(ctx, link))
-    if bounds is None:
+    if bounds is None or max(h - lo for lo, h in zip(*bounds)) < PLACEHOLDER_SIZE:
         return None
     axes = _impossible_axes(link, bounds)
     return (axes, bounds) if axes else None
+
+
+def is_isotropic(link: Link) -> bool:
+    """Whether the declared tensor is diag(I, I, I): a value typed in, not computed (a
+    placeholder, or a tensor inflated on purpose to steady a simulation)."""
+    inertia = link.inertial.inertia if link.inertial else None
+    if inertia is None or inertia.ixx <= 0.0:
+        return False
+    equal = all(abs(value - inertia.ixx) <= 1e-9 * inertia.ixx
+                for value in (inertia.iyy, inertia.izz))
+    return equal and inertia.ixy == inertia.ixz == inertia.iyz == 0.0
 
 
 @rule("I204", "inertia-impossible-for-geometry", family=FAMILY, severity=Severity.WARNING,
@@ -145,20 +161,72 @@ def inertia_impossible_for_geometry(robot: Robot, ctx: RuleContext) -> Iterator[
         return
     for link in robot.links:
         found = _certain_violation(ctx, link)
-        if found is None:
+        if found is None or is_isotropic(link):
             continue
-        axes, (low, high) = found
-        detail = "; ".join(f"along {axis} the declared tensor spreads the mass by "
-                           f"sigma = {sigma:.4g} m, but the geometry allows at most "
-                           f"{bound:.4g} m (half its {2 * bound:.4g} m width)"
-                           for axis, sigma, bound in axes)
-        cause = _unit_cause(ctx, link)
-        yield Finding(f"link '{link.name}': no mass distribution inside its visual and "
-                      f"collision geometry has the declared inertia at "
-                      f"{link.inertial.mass:g} kg: {detail}"
-                      + (f"; likely cause: {cause}" if cause else ""),
-                      link.inertial.inertia.where or link.inertial.where, link_element(link),
-                      _fix(robot, ctx, link))
+        yield _impossible_finding(robot, ctx, link, found[0], "")
+
+
+@rule("I206", "placeholder-inertia-impossible", family=FAMILY, severity=Severity.INFO,
+      needs=NEEDS, opt_in=True)
+def placeholder_inertia_impossible(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a typed-in tensor diag(I, I, I) that no mass distribution inside the link's
+    geometry could have: I204's test, for the tensors I204 leaves out.
+
+    Equal moments with no products are a value typed in, not computed: a placeholder, or a
+    tensor inflated on purpose because a physics engine steps small links badly (TIAGo's hand
+    links say "To stabilize simulation"). Opt-in: on real packages most are deliberate.
+
+    Why is this bad?
+    A placeholder that nobody revisited gives a simulation the wrong dynamics: the link
+    turns as if it were far larger. A deliberate one is better said with a suppression and
+    its reason, so that a reader knows.
+
+    Example
+    ```xml
+    <link name="finger">
+      <inertial>
+        <mass value="0.05"/>
+        <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/>
+      </inertial>
+      <collision><geometry><box size="0.02 0.02 0.06"/></geometry></collision>
+    </link>
+    ```
+
+    Use instead (the tensor of the geometry, `robotdesc inertia --suggest`, or keep the
+    value with `<!-- robotdesc: ignore I206 inflated to steady the simulation -->`):
+    ```xml
+    <link name="finger">
+      <inertial>
+        <mass value="0.05"/>
+        <inertia ixx="1.66667e-05" ixy="0" ixz="0" iyy="1.66667e-05" iyz="0" izz="3.33333e-06"/>
+      </inertial>
+      <collision><geometry><box size="0.02 0.02 0.06"/></geometry></collision>
+    </link>
+    ```
+    """
+    if ctx.meshes is None:
+        return
+    for link in robot.links:
+        found = _certain_violation(ctx, link)
+        if found is not None and is_isotropic(link):
+            yield _impossible_finding(robot, ctx, link, found[0],
+                                      "typed-in tensor diag(I, I, I): ")
+
+
+def _impossible_finding(robot: Robot, ctx: RuleContext, link: Link, axes: list,
+                        kind: str) -> Finding:
+    """I204's and I206's message: each impossible axis, its declared spread and the bound."""
+    detail = "; ".join(f"along {axis} the declared tensor spreads the mass by "
+                       f"sigma = {sigma:.4g} m, but the geometry allows at most "
+                       f"{bound:.4g} m (half its {2 * bound:.4g} m width)"
+                       for axis, sigma, bound in axes)
+    cause = _unit_cause(ctx, link)
+    return Finding(f"link '{link.name}': {kind}no mass distribution inside its visual and "
+                   f"collision geometry has the declared inertia at "
+                   f"{link.inertial.mass:g} kg: {detail}"
+                   + (f"; likely cause: {cause}" if cause else ""),
+                   link.inertial.inertia.where or link.inertial.where, link_element(link),
+                   _fix(robot, ctx, link))
 
 
 def _unit_cause(ctx: RuleContext, link: Link) -> str | None:
@@ -192,7 +260,8 @@ def _comparisons(robot: Robot, ctx: RuleContext, tolerance: float) -> dict:
 
     results = {}
     for link, geometry in _measured(robot, ctx):
-        if link.inertial.inertia is None or _certain_violation(ctx, link) is not None:
+        if link.inertial.inertia is None or _certain_violation(ctx, link) is not None \
+                or _placeholder(geometry):
             continue
         results[link.name] = (link, geometry,
                               compare_inertia(link.inertial, geometry.properties, tolerance))
@@ -231,8 +300,8 @@ def _fitting_cause(comparison) -> str | None:
     return cause
 
 
-#: I201 leaves links of at most this mass (kg) alone: a gram's tensor moves nothing, and
-#: such links carry placeholder values (I203 skips them too).
+#: I201, I203 and I204 leave links of at most this mass (kg) alone: a gram's tensor moves
+#: nothing, and such links carry placeholder values (a frame given a token mass, as in M115).
 PLACEHOLDER_MASS = 1e-3
 
 
@@ -249,7 +318,7 @@ def _mismatch_findings(robot: Robot, ctx: RuleContext, tolerance: float,
         if partner and not results[partner][2].mismatch(tolerance):
             mirror = f"its mirror link '{partner}' agrees with its geometry"
             cause = f"{cause}; {mirror}" if cause else f"left/right links disagree: {mirror}"
-        if not keep(dataclasses.replace(comparison, cause=cause)):
+        if not keep(dataclasses.replace(comparison, cause=cause), name):
             continue
         worst = max(comparison.moment_errors)
         yield Finding(
@@ -269,14 +338,19 @@ def inertia_differs_from_geometry(robot: Robot, ctx: RuleContext) -> Iterator[Fi
     (collision by default, at uniform density and the declared mass) by a factor of 10 or
     more in a principal moment, or in a way that has a recognised cause.
 
-    The recognised causes: a unit slip (a factor of 1e3, 1e6 or 1e9: grams, millimetres),
+    The factor is that of the largest principal moment, which dominates how the link
+    turns. The recognised causes: a unit slip (a factor of 1e3, 1e6 or 1e9: grams, millimetres),
     a rotated tensor (the same principal moments within 10%, other axes), products of
     inertia with the CAD sign convention (flipping their signs matches the geometry within
     10%). A left/right mirror link that agrees with its own geometry is named too.
     The fix is the `<inertial>` computed from the geometry, at the declared mass (with a mesh
     diagnosed as millimetres scaled by 0.001 first). Smaller deviations without a cause are
-    I205's (off by default): a real link is not of uniform density. Links of a gram or less
-    (placeholder frames) are left alone.
+    I205's (off by default): a real link is not of uniform density. Without a recognised
+    cause the tensor must be 10x off the estimate of every geometry the link has, visual and
+    collision (a collision proxy, such as a small disc standing for an arm segment, does not
+    condemn a tensor its visual mesh agrees with). Links of a gram or less and geometry under
+    5 mm (placeholders), and singular tensors (a point mass, a rod: I103 judges those), are
+    left alone.
 
     Why is this bad?
     The tensor decides how the link responds to torque. Values typed by hand, converted
@@ -309,9 +383,48 @@ def inertia_differs_from_geometry(robot: Robot, ctx: RuleContext) -> Iterator[Fi
     """
     factor = ctx.options.factor if ctx.options else InertiaMismatchOptions.factor
     tolerance = DeviationOptions.tolerance
-    yield from _mismatch_findings(
-        robot, ctx, tolerance,
-        lambda c: _factor(c) >= factor or _has_cause(c), min_mass=PLACEHOLDER_MASS)
+    links = {link.name: link for link in robot.links}
+
+    def keep(comparison, name: str) -> bool:
+        if _singular(comparison):
+            return False
+        if _has_cause(comparison):
+            return True
+        return (_largest_factor(comparison) >= factor
+                and _off_from_every_source(ctx, links[name], factor, tolerance))
+
+    yield from _mismatch_findings(robot, ctx, tolerance, keep, min_mass=PLACEHOLDER_MASS)
+
+
+def _singular(comparison) -> bool:
+    """A declared point mass, rod or plate (a principal moment zero, to rounding): I103
+    judges those."""
+    return min(comparison.declared_moments) <= 1e-9 * max(comparison.derived_moments)
+
+
+def _largest_factor(comparison) -> float:
+    """The ratio, either way, of the declared and derived largest principal moments: the one
+    that dominates how the link turns (a rod's tiny moment about its own axis does not)."""
+    declared, derived = max(comparison.declared_moments), max(comparison.derived_moments)
+    if declared <= 0 or derived <= 0:
+        return float("inf")
+    return max(declared / derived, derived / declared)
+
+
+def _off_from_every_source(ctx: RuleContext, link: Link, factor: float,
+                           tolerance: float) -> bool:
+    """Whether the declared moments are `factor` off the uniform-density estimate of each of
+    the link's geometries: a collision proxy (a small disc standing for an arm segment, as
+    on Unitree H1) must not condemn a tensor that its visual mesh agrees with."""
+    from robotdesc.inertia.compare import compare_inertia
+
+    for geometry in _both_sources(ctx, link):
+        if not geometry.trusted:
+            continue
+        other = compare_inertia(link.inertial, geometry.properties, tolerance)
+        if _largest_factor(other) < factor:
+            return False
+    return True
 
 
 def _has_cause(comparison) -> bool:
@@ -369,7 +482,7 @@ def inertia_deviates_from_uniform_density(robot: Robot, ctx: RuleContext) -> Ite
     factor = InertiaMismatchOptions.factor
     yield from _mismatch_findings(
         robot, ctx, tolerance,
-        lambda c: _factor(c) < factor and not _has_cause(c))
+        lambda c, _name: _factor(c) < factor and not _has_cause(c))
 
 
 @dataclass(frozen=True)
@@ -534,8 +647,6 @@ def implausible_density(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
                       link.inertial.where, link_element(link))
 
 
-#: Links lighter than this (kg) are placeholders (a frame given a token mass), as in M115.
-PLACEHOLDER_MASS = 1e-3
 #: Geometry whose largest extent is below this (m) is a placeholder (a 1 mm cube).
 PLACEHOLDER_SIZE = 0.005
 #: Below this largest extent (m) the geometry may be a stand-in: no unit cause is named.

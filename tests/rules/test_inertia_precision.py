@@ -1,0 +1,54 @@
+"""Real-package cases of issue 14's precision pass on I201/I204/I206 that must stay as they are."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+URDF = """<?xml version="1.0"?>
+<robot name="arm">
+  <link name="base">
+    <inertial><mass value="2"/><inertia ixx="0.02" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.02"/></inertial>
+    <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>
+  </link>
+  <!-- TIAGo's tool links: a point mass on a fixed joint, lumped into the parent (I103 allows it) -->
+  <link name="tool_link">
+    <inertial><mass value="0.1"/><inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial>
+    <collision><geometry><box size="0.02 0.02 0.02"/></geometry></collision>
+  </link>
+  <joint name="tool_joint" type="fixed"><parent link="base"/><child link="tool_link"/></joint>
+  <!-- a sensor frame of a milligram (go1's ultrasound): a token mass, nothing to judge -->
+  <link name="sensor_link">
+    <inertial><mass value="1e-05"/><inertia ixx="1e-06" ixy="0" ixz="0" iyy="1e-06" iyz="0" izz="1e-06"/></inertial>
+    <collision><geometry><box size="0.01 0.01 0.01"/></geometry></collision>
+  </link>
+  <joint name="sensor_joint" type="fixed"><parent link="base"/><child link="sensor_link"/></joint>
+  <!-- a finger whose typed-in tensor is inflated on purpose (TIAGo's hand): I206, opt-in -->
+  <link name="finger">
+    <inertial><mass value="0.05"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial>
+    <collision><geometry><box size="0.02 0.02 0.06"/></geometry></collision>
+  </link>
+  <joint name="finger_joint" type="revolute"><parent link="base"/><child link="finger"/>
+    <axis xyz="0 0 1"/><limit lower="0" upper="1" effort="1" velocity="1"/></joint>
+</robot>
+"""
+
+
+def _codes(tmp_path: Path, select: str) -> list[tuple[str, str]]:
+    path = tmp_path / "arm.urdf"
+    path.write_text(URDF)
+    run = subprocess.run([sys.executable, "-m", "robotdesc", "lint", str(path), "--select",
+                          select, "--format", "json"], check=False, capture_output=True,
+                         text=True, timeout=120,
+                         env={"ROBOTDESC_CACHE_DIR": "off", "PATH": "/usr/bin:/bin"})
+    return sorted((d["code"], d["element"]) for d in json.loads(run.stdout)["diagnostics"])
+
+
+def test_default_rules_stay_silent(tmp_path: Path) -> None:
+    assert _codes(tmp_path, "I201,I204,I103") == []
+
+
+def test_the_inflated_finger_is_the_opt_in_rule(tmp_path: Path) -> None:
+    assert _codes(tmp_path, "I206") == [("I206", "link:finger/inertial")]
