@@ -349,8 +349,9 @@ def inertia_differs_from_geometry(robot: Robot, ctx: RuleContext) -> Iterator[Fi
     cause the tensor must be 10x off the estimate of every geometry the link has, visual and
     collision (a collision proxy, such as a small disc standing for an arm segment, does not
     condemn a tensor its visual mesh agrees with). Links of a gram or less and geometry under
-    5 mm (placeholders), and singular tensors (a point mass, a rod: I103 judges those), are
-    left alone.
+    5 mm (placeholders), singular tensors (a point mass, a rod: I103 judges those) and
+    typed-in diag(I, I, I) tensors larger than the geometry's (inflated to steady a
+    simulation, see I206) are left alone.
 
     Why is this bad?
     The tensor decides how the link responds to torque. Values typed by hand, converted
@@ -386,8 +387,9 @@ def inertia_differs_from_geometry(robot: Robot, ctx: RuleContext) -> Iterator[Fi
     links = {link.name: link for link in robot.links}
 
     def keep(comparison, name: str) -> bool:
-        if _singular(comparison):
-            return False
+        if _singular(comparison) or (is_isotropic(links[name]) and max(
+                comparison.declared_moments) > max(comparison.derived_moments)):
+            return False  # I103's; or typed in larger, as to steady a simulation (I206)
         if _has_cause(comparison):
             return True
         return (_largest_factor(comparison) >= factor
