@@ -25,8 +25,10 @@ def test_contact_at_every_configuration_and_at_a_limit_get_their_reasons() -> No
     always, at_limit = findings("K203")
     assert "every sampled configuration" in always.message
     assert 'link1="left" link2="right" reason="Always"' in always.fix
-    assert "joints sit at a limit" in at_limit.message
+    assert "joints at a limit" in at_limit.message
     assert 'link1="left2" link2="right2" reason="Default"' in at_limit.fix
+    # a one-DOF linkage touching mid-range (Robotiq's knuckles): "Default", not K201
+    assert 'link1="knuckle_a" link2="knuckle_b" reason="Default"' in at_limit.fix
 
 
 def test_only_the_real_overlap_is_a_warning() -> None:

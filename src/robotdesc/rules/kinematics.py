@@ -437,9 +437,11 @@ def self_collision_at_default(robot: Robot, ctx: RuleContext) -> Iterator[Findin
     Adjacency is MoveIt Setup Assistant's: links joined by fixed joints are one rigid body and
     never reported; links whose bodies a joint connects (directly, or through bodies without
     collision geometry) are adjacent. A pair that also collides at every sampled
-    configuration (links in contact by design, such as a mimic-coupled linkage), or that
+    configuration (links in contact by design, such as a mimic-coupled linkage), that
     touches only because joints sit at a limit in the default configuration (a gripper
-    closed at 0, a folded rest pose) and parts once they move inward, is K203's.
+    closed at 0, a folded rest pose) and parts once they move inward, or whose relative pose
+    one degree of freedom decides (a joint and those that mimic it: the fingers and knuckles
+    of a gripper touching at its default opening), is K203's.
 
     Why is this bad?
     A robot that starts in self-collision cannot be planned for: MoveIt rejects the start
@@ -515,6 +517,7 @@ def _self_collisions(robot: Robot, ctx: RuleContext, code: str):
     colliding = default_collisions(prepared)
     always = set(always_in_contact(prepared, colliding))
     at_limits = _contact_at_limits(robot, prepared, [p for p in colliding if p not in always])
+    at_limits |= one_dof_pairs(robot, [p for p in colliding if p not in always])
     result = (colliding, always, at_limits)
     _COLLISIONS["last"] = (robot, result)
     return result
@@ -550,6 +553,48 @@ def _contact_at_limits(robot: Robot, prepared, pairs: list[tuple[str, str]]
     return {pair for pair in pairs if pair not in still}
 
 
+def one_dof_pairs(robot: Robot, pairs: list[tuple[str, str]]) -> set[tuple[str, str]]:
+    """The pairs whose relative pose one degree of freedom decides: every moving joint on the
+    tree path between them is one joint or mimics it (the fingers or knuckles of a gripper).
+
+    Such a pair in contact at the default configuration, but not at every sampled one, is a
+    linkage touching at its default position (a gripper closed at 0): K203's "Default", not
+    an overlap to fix.
+    """
+    parent_joint = tree.parent_joint_of(robot)
+    joints = {joint.name: joint for joint in robot.joints}
+
+    def driver(joint: Joint) -> str:
+        seen = {joint.name}
+        while joint.mimic is not None and joint.mimic.joint in joints \
+                and joint.mimic.joint not in seen:
+            joint = joints[joint.mimic.joint]
+            seen.add(joint.name)
+        return joint.name
+
+    def path_up(link: str) -> list[str]:
+        chain, seen = [link], {link}
+        while link in parent_joint and parent_joint[link].parent not in seen:
+            link = parent_joint[link].parent
+            chain.append(link)
+            seen.add(link)
+        return chain
+
+    found = set()
+    for first, second in pairs:
+        up_first, up_second = path_up(first), path_up(second)
+        common = set(up_first) & set(up_second)
+        if not common:
+            continue
+        below = [link for link in up_first if link not in common] + \
+            [link for link in up_second if link not in common]
+        drivers = {driver(parent_joint[link]) for link in below
+                   if parent_joint[link].type not in ("fixed", "floating", "planar")}
+        if len(drivers) == 1:
+            found.add((first, second))
+    return found
+
+
 @rule("K203", "links-always-in-contact", family=FAMILY, severity=Severity.INFO,
       needs=("meshes", "pinocchio"))
 def links_always_in_contact(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
@@ -560,8 +605,10 @@ def links_always_in_contact(robot: Robot, ctx: RuleContext) -> Iterator[Finding]
 
     Pairs in contact at the default configuration only because joints sit at a limit there
     (fingers of a gripper closed at 0, an arm folded into its rest pose), which part when
-    those joints move a tenth of their range inward, are reported in a second finding:
-    MoveIt's Setup Assistant disables them with reason "Default".
+    those joints move a tenth of their range inward, and pairs whose relative pose one
+    degree of freedom decides (a joint and the joints that mimic it: a gripper's fingers and
+    knuckles), are reported in a second finding: MoveIt's Setup Assistant disables them with
+    reason "Default".
 
     Why is this bad?
     It is not a mistake in the URDF, but MoveIt treats the robot as always in
@@ -594,9 +641,9 @@ def links_always_in_contact(robot: Robot, ctx: RuleContext) -> Iterator[Finding]
     colliding, always, at_limits = found
     for chosen, reason, what in (
             (always, "Always", "are in contact at every sampled configuration (by design)"),
-            (at_limits, "Default", "are in contact at the default configuration only because "
-             "joints sit at a limit there (a closed gripper, a folded rest pose); they part "
-             "when those joints move inward")):
+            (at_limits, "Default", "are in contact at the default configuration of a "
+             "linkage or joints at a limit (a closed gripper, a folded rest pose), and part "
+             "when those joints move")):
         pairs = [pair for pair in colliding if pair in chosen]
         if not pairs:
             continue
