@@ -635,7 +635,9 @@ def implausible_density(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
         if not measured or any(_placeholder(g) for g in measured):
             continue
         densities = [link.inertial.mass / g.properties.volume for g in measured]
-        if any(options.min_density <= d <= options.max_density for d in densities):
+        slack = 1e-6  # 1 kg in a 0.2 x 0.1 x 1 m box is 50 kg/m^3, not 49.99999
+        if any(options.min_density * (1 - slack) <= d <= options.max_density * (1 + slack)
+               for d in densities):
             continue  # one of the geometries is plausible: the other is a simplification
         geometry, density = measured[0], densities[0]
         small = max(_extent(g) for g in measured) < CAUSE_MIN_SIZE
