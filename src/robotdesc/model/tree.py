@@ -3,7 +3,8 @@ mimic resolution and forward kinematics. The one implementation every layer uses
 view, sim, kinematics, srdf).
 
 The structural functions are plain Python (a lint must not import numpy); forward kinematics
-(`joint_motion`, `poses_at`, `link_transforms`) imports numpy when called. Units: metres and
+(`joint_motion`, `poses_at`, `link_transforms`, and `joint_chain` / `link_frames` for many
+configurations at once) imports numpy when called. Units: metres and
 radians; poses are 4x4 homogeneous matrices mapping child-frame coordinates to world
 coordinates, the root links at the world origin.
 
@@ -17,7 +18,8 @@ from __future__ import annotations
 import logging
 import math
 from collections import defaultdict, deque
-from collections.abc import Collection, Iterable, Iterator, Mapping
+from collections.abc import Collection, Iterable, Iterator, Mapping, Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from robotdesc.errors import UsageError
@@ -445,32 +447,138 @@ def joint_motion(joint: Joint, value: float) -> np.ndarray:
     return motion
 
 
+@dataclass(frozen=True, eq=False)
+class JointChain:
+    """The tree in walking order, as plain arrays (picklable), for forward kinematics of many
+    configurations at once.
+
+    Attributes:
+        links: link names; parents before children, each root first in its tree.
+        parent: per link, the index of its parent link (-1 for a root).
+        origin: per link, (4, 4) placement of its joint's frame in the parent frame (m).
+        axis: per link, the unit joint axis (zeros when the joint does not move).
+        prismatic: per link, True when its joint slides.
+        column: per link, the column of its joint in the positions array (-1: none).
+    """
+
+    links: tuple[str, ...]
+    parent: np.ndarray
+    origin: np.ndarray
+    axis: np.ndarray
+    prismatic: np.ndarray
+    column: np.ndarray
+
+
+def joint_chain(robot: Robot, columns: Sequence[str]) -> JointChain:
+    """The walking order of `robot`'s tree (breadth first from each root; the first joint that
+    reaches a link places it); `columns` names the joints of a positions array. Links that no
+    root reaches (in a kinematic loop) are left out."""
+    import numpy as np
+
+    column_of = {name: k for k, name in enumerate(columns)}
+    children = children_of(robot)
+    links: list[str] = []
+    parent: list[int] = []
+    origin: list[np.ndarray] = []
+    axis: list[np.ndarray] = []
+    prismatic: list[bool] = []
+    column: list[int] = []
+    index: dict[str, int] = {}
+    for root in roots(robot):
+        if root.name in index:
+            continue
+        index[root.name] = len(links)
+        links.append(root.name)
+        parent.append(-1)
+        origin.append(np.identity(4))
+        axis.append(np.zeros(3))
+        prismatic.append(False)
+        column.append(-1)
+        queue = deque([root.name])
+        while queue:
+            name = queue.popleft()
+            for joint in children.get(name, ()):
+                if joint.child in index:
+                    continue
+                index[joint.child] = len(links)
+                links.append(joint.child)
+                parent.append(index[name])
+                origin.append(pose_matrix(joint.origin))
+                vector = np.asarray(joint.axis or DEFAULT_AXIS, dtype=float)
+                norm = float(np.linalg.norm(vector))
+                moving = joint.type in SCALAR_TYPES and joint.name in column_of \
+                    and math.isfinite(norm) and norm > 0.0
+                axis.append(vector / norm if moving else np.zeros(3))
+                prismatic.append(joint.type == "prismatic")
+                column.append(column_of[joint.name] if moving else -1)
+                queue.append(joint.child)
+    return JointChain(tuple(links), np.asarray(parent, dtype=int), np.asarray(origin),
+                      np.asarray(axis), np.asarray(prismatic, dtype=bool),
+                      np.asarray(column, dtype=int))
+
+
+def link_frames(chain: JointChain, positions: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """World frames of every link of `chain` for every row of `positions`: each joint places
+    its child by `origin`, then moves it about (revolute, continuous) or along (prismatic)
+    its unit axis, as Pinocchio's URDF reader does; fixed joints only place.
+
+    Args:
+        chain: from `joint_chain`.
+        positions: (n, columns) joint positions, rad or m.
+
+    Returns:
+        Rotations (n, links, 3, 3) and translations (n, links, 3), m.
+    """
+    import numpy as np
+
+    count = len(positions)
+    rotations = np.empty((count, len(chain.links), 3, 3))
+    translations = np.empty((count, len(chain.links), 3))
+    identity = np.identity(3)
+    for k in range(len(chain.links)):
+        origin, parent = chain.origin[k], chain.parent[k]
+        if parent < 0:
+            rotation = np.broadcast_to(origin[:3, :3], (count, 3, 3))
+            translation = np.broadcast_to(origin[:3, 3], (count, 3))
+        else:
+            rotation = rotations[:, parent] @ origin[:3, :3]
+            translation = rotations[:, parent] @ origin[:3, 3] + translations[:, parent]
+        if chain.column[k] >= 0:
+            value, a = positions[:, chain.column[k]], chain.axis[k]
+            if chain.prismatic[k]:
+                translation = translation + rotation @ a * value[:, None]
+            else:
+                c, s = np.cos(value)[:, None, None], np.sin(value)[:, None, None]
+                cross = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+                motion = c * identity + s * cross + (1.0 - c) * np.outer(a, a)
+                rotation = rotation @ motion
+        rotations[:, k] = rotation
+        translations[:, k] = translation
+    return rotations, translations
+
+
 def poses_at(robot: Robot, q: Mapping[str, float] | None = None) -> dict[str, np.ndarray]:
     """World transform (4x4) of every link for a complete configuration (as returned by
     `configuration`: mimic joints already resolved; missing joints taken as 0).
 
     Root links (no parent joint) sit at the identity; the tree is walked breadth first, the
-    first joint reaching a link places it. A link that no root reaches (in a kinematic loop)
-    is placed at the identity too, and logged. Fixed, floating and planar joints are placed
-    at their origin.
+    first joint reaching a link places it (`joint_chain`, `link_frames`). A link that no root
+    reaches (in a kinematic loop) is placed at the identity too, and logged. Fixed, floating
+    and planar joints are placed at their origin.
     """
     import numpy as np
 
     q = q or {}
-    children = children_of(robot)
+    columns = [joint.name for joint in robot.joints if joint.type in SCALAR_TYPES]
+    chain = joint_chain(robot, columns)
+    positions = np.array([[float(q.get(name, 0.0)) for name in columns]])
+    rotations, translations = link_frames(chain, positions)
     poses: dict[str, np.ndarray] = {}
-    queue: deque[str] = deque()
-    for link in roots(robot):
-        poses[link.name] = np.identity(4)
-        queue.append(link.name)
-    while queue:
-        parent = queue.popleft()
-        for joint in children.get(parent, ()):
-            if joint.child in poses:
-                continue
-            local = pose_matrix(joint.origin) @ joint_motion(joint, q.get(joint.name, 0.0))
-            poses[joint.child] = poses[parent] @ local
-            queue.append(joint.child)
+    for k, name in enumerate(chain.links):
+        pose = np.identity(4)
+        pose[:3, :3] = rotations[0, k]
+        pose[:3, 3] = translations[0, k]
+        poses[name] = pose
     for link in robot.links:
         if link.name not in poses:
             log.info("link '%s' is not reached from a root link; placed at the origin",

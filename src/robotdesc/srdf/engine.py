@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from robotdesc.kinematics.geometry import CollisionShape
-from robotdesc.srdf.forward import Chain, link_frames
+from robotdesc.model.tree import JointChain, link_frames
 from robotdesc.srdf.reach import MARGIN, Sphere
 
 #: Rows of the broad phase handled at once (bounds its memory: rows x pairs x 3 floats).
@@ -39,7 +39,7 @@ class CheckSpec:
     shapes: tuple[CollisionShape, ...]
     pairs: tuple[tuple[str, str], ...]
     convex: bool
-    tree: Chain
+    tree: JointChain
     spheres: tuple[Sphere, ...]
 
 

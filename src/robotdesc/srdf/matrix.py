@@ -31,10 +31,9 @@ from robotdesc.kinematics.scene import SceneSpec, all_link_pairs
 from robotdesc.kinematics.urdf_text import MeshPath
 from robotdesc.model import tree
 from robotdesc.model.elements import Robot
-from robotdesc.model.tree import poses_at
+from robotdesc.model.tree import joint_chain, poses_at
 from robotdesc.srdf import engine
 from robotdesc.srdf.engine import CheckSpec
-from robotdesc.srdf.forward import chain
 from robotdesc.srdf.reach import reach, shape_spheres
 from robotdesc.srdf.sampling import sample_positions
 
@@ -297,7 +296,7 @@ def compute_matrix(robot: Robot, mesh_path: MeshPath, *, samples: int = 10000, s
              len(sampled))
     names, positions = sample_positions(robot, samples, seed)
     q = prepared.kinematics.configurations(names, positions)
-    spec = CheckSpec(prepared.spec.urdf, shapes, sampled, convex, chain(robot, names),
+    spec = CheckSpec(prepared.spec.urdf, shapes, sampled, convex, joint_chain(robot, names),
                      shape_spheres(shapes))
     fixed = np.array([pair in defaults for pair in sampled], dtype=bool)
     counts, checked, drawn = _sample_rounds(spec, positions, q, workers, always_fraction, fixed,
