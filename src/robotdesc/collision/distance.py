@@ -73,13 +73,6 @@ def _segment_squared(points: np.ndarray, a: np.ndarray, edge: np.ndarray) -> np.
     return _dot(offset, offset)
 
 
-def point_segment_distance(points: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Distance from each point to the matching segment a-b (pairwise)."""
-    a = np.asarray(a, dtype=np.float64)
-    return np.sqrt(_segment_squared(np.asarray(points, dtype=np.float64), a,
-                                    np.asarray(b, dtype=np.float64) - a))
-
-
 class SurfaceIndex:
     """A triangle surface prepared for exact nearest-distance queries.
 

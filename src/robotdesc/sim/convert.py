@@ -146,10 +146,6 @@ class Scene:
     qpos0: np.ndarray
     robot: Robot
 
-    def link_of_dof(self, dof: int) -> str:
-        """The link moved by a degree of freedom."""
-        return self.body_links[int(self.model.dof_bodyid[dof])]
-
     def link_span(self, link: str) -> Span | None:
         found = self.robot.link(link)
         return found.where.span if found is not None and found.where is not None else None

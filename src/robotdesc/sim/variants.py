@@ -13,7 +13,7 @@ import dataclasses
 import logging
 from typing import Any, Mapping, Sequence
 
-from robotdesc.model.elements import Collision, Link, Pose, Robot
+from robotdesc.model.elements import Collision, Robot
 
 log = logging.getLogger(__name__)
 
@@ -48,8 +48,3 @@ def generated_parts(robot: Robot, *, method: str = "decimate",
                     len(skipped), ", ".join(skipped[:5]))
     return parts
 
-
-def primitive_collisions(link: Link, parts: Sequence[Any]) -> tuple[Collision, ...]:
-    """The primitive parts of a generated link as `<collision>` elements (meshes excluded)."""
-    return tuple(Collision(f"generated{index}", getattr(part, "origin", Pose()), part.geometry)
-                 for index, part in enumerate(parts) if hasattr(part, "geometry"))
