@@ -13,6 +13,7 @@ from collections.abc import Iterator
 
 from robotdesc.diagnostics import Finding, Severity
 from robotdesc.inertia.links import is_dynamics_model
+from robotdesc.mesh.records import MassMethod
 from robotdesc.model.elements import Robot
 from robotdesc.rules.registry import RuleContext, rule
 
@@ -365,7 +366,9 @@ def mesh_not_watertight(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     inertia is judged from them (the configured `inertia-source` is "visual", or the link
     has no collision geometry); a visual mesh of a link without `<inertial>` is never
     reported. Vertices on the rims of holes closer than a millionth of the mesh's size are
-    merged first: exporters' rounding leaves such cracks, and no consumer sees them.
+    merged first: exporters' rounding leaves such cracks, and no consumer sees them. A mesh
+    with no hole whose only defect is edges shared by more than two faces, and whose volume
+    is still integrated exactly, is not reported (Unitree G1's exports have a few).
 
     The message says how its mass properties were obtained instead (holes capped, or the
     convex hull).
@@ -391,8 +394,9 @@ def mesh_not_watertight(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """
     def check(summary):
         health = summary.health
-        if health.watertight:
-            return None
+        if health.watertight or (not health.boundary_edges
+                                 and summary.method is MassMethod.EXACT):
+            return None  # closed, with edges shared by more faces: its volume is exact
         parts = []
         if health.boundary_edges:
             parts.append(f"{health.boundary_edges} boundary edges in {health.hole_loops} holes")
