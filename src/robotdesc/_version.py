@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import functools
 import hashlib
+import importlib.util
 import os
 
 __version__ = "0.1.0"
@@ -32,3 +33,24 @@ def code_id() -> str:
                 relative = os.path.relpath(path, package)
                 digest.update(f"{relative}\0{status.st_size}\0{status.st_mtime_ns}\n".encode())
     return f"{__version__}+{digest.hexdigest()[:16]}"
+
+
+@functools.cache
+def module_stamp(name: str) -> str:
+    """Where a module is installed, with its file's size and modification time (ns), or
+    "none" when it is not installed.
+
+    Stands for the module's version in cache keys: an upgrade rewrites the file. Cheaper
+    than `importlib.metadata` (about 25 ms of imports) and does not import the module.
+    """
+    try:
+        spec = importlib.util.find_spec(name)
+    except (ImportError, ValueError):
+        spec = None
+    if spec is None or not spec.origin:
+        return "none"
+    try:
+        status = os.stat(spec.origin)
+    except OSError:
+        return spec.origin
+    return f"{spec.origin}:{status.st_size}:{status.st_mtime_ns}"

@@ -126,8 +126,6 @@ def expand_file(path: str | Path, args: Mapping[str, str] | None = None, *,
     Raises:
         InputError: the file cannot be expanded; its subclasses say why and where.
     """
-    from robotdesc.expansion.runner import WorkerLimits, run_worker
-
     options = options or ExpandOptions()
     args = dict(args or {})
     path = Path(path).absolute()
@@ -141,7 +139,6 @@ def expand_file(path: str | Path, args: Mapping[str, str] | None = None, *,
                                                       options.package_map)
     names = DEFAULT_ENV_ALLOWLIST + options.env_allowlist
     env = dict(os.environ) if options.trusted else {n: os.environ[n] for n in names if n in os.environ}
-    limits = WorkerLimits(options.timeout_s, options.memory_mb, options.max_macro_depth)
     cache_root = Path(options.cache_dir) if options.cache_dir else None
     key = None
     if options.use_cache:
@@ -154,6 +151,10 @@ def expand_file(path: str | Path, args: Mapping[str, str] | None = None, *,
             log.debug("expansion cache hit for %s", path)
             _log_packages(hit)
             return _with_notes(hit, args, options)
+    # the worker's runner (subprocess, the OS confinement) only when the cache misses
+    from robotdesc.expansion.runner import WorkerLimits, run_worker
+
+    limits = WorkerLimits(options.timeout_s, options.memory_mb, options.max_macro_depth)
     unpassed = () if options.trusted else tuple(n for n in os.environ if n not in env)
     expanded = run_worker(path, args, resolver, trusted=options.trusted, env=env, limits=limits,
                           env_names=unpassed)

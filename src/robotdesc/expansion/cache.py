@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
-import importlib.util
 import json
 import logging
 import os
@@ -22,7 +21,7 @@ import stat
 import sys
 from pathlib import Path
 
-from robotdesc._version import code_id
+from robotdesc._version import code_id, module_stamp
 from robotdesc.cache_dir import read_regular_file, write_entry
 from robotdesc.expansion.result import Expanded, MacroRecursion, ResolvedPackage, decode_input_facts
 from robotdesc.source import Span
@@ -34,27 +33,8 @@ _FORMAT = 4  # 2: declared_args and env_defaults; 3: the key inside; 4: passed v
 MAX_ENTRY_BYTES = 64 << 20
 
 
-def _module_stamp(name: str) -> str:
-    """Where a module is installed, with its file's size and modification time (ns).
-
-    Stands for the module's version in the key: an upgrade rewrites the file. Cheaper than
-    `importlib.metadata` (about 25 ms of imports) and does not import the module.
-    """
-    try:
-        spec = importlib.util.find_spec(name)
-    except (ImportError, ValueError):
-        spec = None
-    if spec is None or not spec.origin:
-        return "unknown"
-    try:
-        status = os.stat(spec.origin)
-    except OSError:
-        return spec.origin
-    return f"{spec.origin}:{status.st_size}:{status.st_mtime_ns}"
-
-
 def _versions() -> dict[str, str]:
-    return {"xacro": _module_stamp("xacro"), "robotdesc": code_id(),
+    return {"xacro": module_stamp("xacro"), "robotdesc": code_id(),
             "python": ".".join(map(str, sys.version_info[:3]))}
 
 

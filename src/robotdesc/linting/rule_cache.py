@@ -16,11 +16,10 @@ import hashlib
 import json
 import logging
 import os
-from importlib import metadata
 from pathlib import Path
 from typing import Any, Iterable
 
-from robotdesc._version import code_id
+from robotdesc._version import code_id, module_stamp
 from robotdesc.cache_dir import read_regular_file, write_entry
 from robotdesc.diagnostics import Finding
 from robotdesc.source import Provenance, Span
@@ -43,12 +42,6 @@ def rule_key(rule: Any, options: Any, document: bytes, mesh_files: Iterable[str]
     """The key of one rule's findings on one expanded document read from `source` (the
     findings point into it: two copies of one URDF have different keys)."""
 
-    def version(name: str) -> str:
-        try:
-            return metadata.version(name)
-        except metadata.PackageNotFoundError:
-            return "none"
-
     stats = []
     for path in sorted(set(mesh_files)):
         try:
@@ -59,7 +52,7 @@ def rule_key(rule: Any, options: Any, document: bytes, mesh_files: Iterable[str]
     material = json.dumps({"format": _FORMAT, "rule": rule.code, "options": repr(options),
                            "source": os.path.abspath(source) if source else "",
                            "document": hashlib.sha256(document).hexdigest(), "meshes": stats,
-                           "versions": [code_id(), version("pin"), version("coal")]})
+                           "versions": [code_id(), module_stamp("pinocchio"), module_stamp("coal")]})
     return hashlib.sha256(material.encode()).hexdigest()
 
 
