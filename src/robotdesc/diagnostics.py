@@ -68,6 +68,6 @@ class Diagnostic:
     fix: str | None = None
     target: str = ""
 
-    def sort_key(self) -> tuple:
+    def sort_key(self) -> tuple[str, int, str, str]:
         span = self.where.span if self.where else None
         return (span.path if span else "", span.line if span else 0, self.code, self.message)

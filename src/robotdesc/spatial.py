@@ -84,7 +84,7 @@ def minimum_trace(mass: float, max_density: float = MAX_MATERIAL_DENSITY) -> flo
     """
     if mass <= 0 or max_density <= 0:
         return 0.0
-    radius = (3.0 * mass / (4.0 * math.pi * max_density)) ** (1.0 / 3.0)
+    radius = math.pow(3.0 * mass / (4.0 * math.pi * max_density), 1.0 / 3.0)
     return 1.2 * mass * radius * radius
 
 

@@ -13,6 +13,7 @@ import math
 import re
 from collections.abc import Callable
 from dataclasses import replace
+from typing import TypeVar
 
 from lxml import etree
 
@@ -57,6 +58,8 @@ from robotdesc.source import (
 from robotdesc.xml_input import XmlOptions, parse_xml, start_tag_positions
 
 log = logging.getLogger(__name__)
+
+_Read = TypeVar("_Read")
 
 _PROVENANCE_ATTRIBUTE = re.compile(
     rb"""[ \t\r\n]+""" + PROVENANCE_ATTR.encode() + rb"""=(?:"[0-9:;*|@,A-Za-z_.\-]*"|'[0-9:;*|@,A-Za-z_.\-]*')""")
@@ -111,8 +114,8 @@ def strip_provenance(data: bytes) -> bytes:
     if marker not in data:
         return data
 
-    def clean(match: re.Match) -> bytes:
-        markup = match.group(0)
+    def clean(match: re.Match[bytes]) -> bytes:
+        markup: bytes = match.group(0)
         if markup[1:2] in (b"!", b"?") or marker not in markup:
             return markup
         return _PROVENANCE_ATTRIBUTE.sub(b"", markup)
@@ -194,8 +197,8 @@ class _RobotReader:
             chain = self._chains.get(calls)
             if chain is None:
                 if calls:
-                    head = decode_provenance(calls, self.files)
-                    chain = (head.span, *head.macro_stack)
+                    calling = decode_provenance(calls, self.files)
+                    chain = (calling.span, *calling.macro_stack)
                 else:
                     chain = ()
                 self._chains[calls] = chain
@@ -237,8 +240,8 @@ class _RobotReader:
         return value + 0.0  # -0 is 0 (numpy's samplers refuse uniform(0.0, -0.0))
 
     def vector(self, text: str | None, size: int, what: str, where: Provenance, owner: str,
-               default: tuple | None = None, required: bool = False,
-               bound: float | None = None) -> tuple | None:
+               default: tuple[float, ...] | None = None, required: bool = False,
+               bound: float | None = None) -> tuple[float, ...] | None:
         """Read `size` whitespace-separated numbers (each finite and within `bound`)."""
         if text is None:
             if required:
@@ -262,6 +265,13 @@ class _RobotReader:
 
     # -- elements ---------------------------------------------------------------------------
 
+
+    def vector3(self, text: str | None, what: str, where: Provenance, owner: str,
+                default: Vec3 | None = None, required: bool = False,
+                bound: float | None = None) -> Vec3 | None:
+        """`vector` of three numbers, typed as such."""
+        found = self.vector(text, 3, what, where, owner, default, required, bound)
+        return (found[0], found[1], found[2]) if found is not None else None
     def robot(self, root: etree._Element) -> Robot:
         where = self.where(root, None)
         name = root.get("name")
@@ -293,11 +303,11 @@ class _RobotReader:
         if element is None:
             return Pose()
         where = self.where(element, parent)
-        xyz = self.vector(element.get("xyz"), 3, "<origin> xyz", where, owner, _ZERO,
-                          bound=self.limits.length)
-        rpy = self.vector(element.get("rpy"), 3, "<origin> rpy", where, owner, _ZERO,
-                          bound=self.limits.angle)
-        return Pose(xyz, rpy, where)
+        xyz = self.vector3(element.get("xyz"), "<origin> xyz", where, owner, _ZERO,
+                           bound=self.limits.length)
+        rpy = self.vector3(element.get("rpy"), "<origin> rpy", where, owner, _ZERO,
+                           bound=self.limits.angle)
+        return Pose(xyz or _ZERO, rpy or _ZERO, where)
 
     def link(self, element: etree._Element, parent: Provenance) -> Link:
         where = self.where(element, parent)
@@ -357,9 +367,11 @@ class _RobotReader:
         values = [self.number(element.get(key), f"<inertia> {key}", where, owner, required=True,
                               bound=self.limits.inertia)
                   for key in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")]
-        if any(value is None for value in values):
+        ixx, ixy, ixz, iyy, iyz, izz = values
+        if ixx is None or ixy is None or ixz is None or iyy is None or iyz is None \
+                or izz is None:
             return None
-        return Inertia(*values, where=where)
+        return Inertia(ixx, ixy, ixz, iyy, iyz, izz, where=where)
 
     def visual(self, element: etree._Element, parent: Provenance, owner: str) -> Visual:
         where = self.where(element, parent)
@@ -401,11 +413,12 @@ class _RobotReader:
             owner = f"material:{name}"
             if not name:
                 self.issue("<material> has no name (required)", where, owner)
-        color = None
+        color: tuple[float, float, float, float] | None = None
         color_element = _first(element, "color")
         if color_element is not None:
-            color = self.vector(color_element.get("rgba"), 4, "<color> rgba",
-                                self.where(color_element, where), owner, required=True)
+            rgba = self.vector(color_element.get("rgba"), 4, "<color> rgba",
+                               self.where(color_element, where), owner, required=True)
+            color = (rgba[0], rgba[1], rgba[2], rgba[3]) if rgba is not None else None
         texture_element = _first(element, "texture")
         texture = texture_element.get("filename") if texture_element is not None else None
         return Material(name, color, texture, where)
@@ -422,8 +435,8 @@ class _RobotReader:
         axis_element = kids.get("axis")
         if axis_element is not None:
             axis_where = self.where(axis_element, where)
-            axis = self.vector(axis_element.get("xyz"), 3, "<axis> xyz", axis_where, owner,
-                               (1.0, 0.0, 0.0), bound=self.limits.length)
+            axis = self.vector3(axis_element.get("xyz"), "<axis> xyz", axis_where, owner,
+                                (1.0, 0.0, 0.0), bound=self.limits.length)
         return Joint(
             name=name, type=element.get("type") or "",
             parent=self.link_reference(kids.get("parent")),
@@ -442,13 +455,16 @@ class _RobotReader:
         return (element.get("link") or "") if element is not None else ""
 
     def optional(self, kids: dict[str, etree._Element], tag: str, parent: Provenance,
-                 owner: str, read: Callable[[etree._Element, Provenance, str], object]):
+                 owner: str, read: Callable[[etree._Element, Provenance, str], _Read]
+                 ) -> _Read | None:
         child = kids.get(tag)
         return read(child, self.where(child, parent), owner) if child is not None else None
 
     def limit(self, element: etree._Element, where: Provenance, owner: str) -> JointLimit:
-        read = lambda key, required=False: self.number(
-            element.get(key), f"<limit> {key}", where, owner, required=required)
+        def read(key: str, required: bool = False) -> float | None:
+            return self.number(element.get(key), f"<limit> {key}", where, owner,
+                               required=required)
+
         return JointLimit(read("lower"), read("upper"), read("effort", True),
                           read("velocity", True), where)
 
@@ -471,8 +487,9 @@ class _RobotReader:
 
     def safety_controller(self, element: etree._Element, where: Provenance,
                           owner: str) -> SafetyController:
-        read = lambda key: self.number(
-            element.get(key), f"<safety_controller> {key}", where, owner)
+        def read(key: str) -> float | None:
+            return self.number(element.get(key), f"<safety_controller> {key}", where, owner)
+
         return SafetyController(read("soft_lower_limit"), read("soft_upper_limit"),
                                 read("k_position"), read("k_velocity"), where)
 
@@ -513,41 +530,47 @@ class _RobotReader:
 
     # -- shapes -----------------------------------------------------------------------------
 
-    def box(self, element, where, owner) -> Box | None:
-        size = self.vector(element.get("size"), 3, "<box> size", where, owner, required=True,
-                           bound=self.limits.length)
+    def box(self, element: etree._Element, where: Provenance, owner: str) -> Box | None:
+        size = self.vector3(element.get("size"), "<box> size", where, owner, required=True,
+                            bound=self.limits.length)
         return Box(size, where) if size is not None else None
 
-    def required(self, element, key: str, where, owner) -> float | None:
+    def required(self, element: etree._Element, key: str, where: Provenance,
+                 owner: str) -> float | None:
         return self.number(element.get(key), f"<{_tag(element)}> {key}", where, owner,
                            required=True, bound=self.limits.length)
 
-    def cylinder(self, element, where, owner) -> Cylinder | None:
+    def cylinder(self, element: etree._Element, where: Provenance,
+                 owner: str) -> Cylinder | None:
         radius = self.required(element, "radius", where, owner)
         length = self.required(element, "length", where, owner)
-        return Cylinder(radius, length, where) if None not in (radius, length) else None
+        if radius is None or length is None:
+            return None
+        return Cylinder(radius, length, where)
 
-    def capsule(self, element, where, owner) -> Capsule | None:
+    def capsule(self, element: etree._Element, where: Provenance, owner: str) -> Capsule | None:
         radius = self.required(element, "radius", where, owner)
         length = self.required(element, "length", where, owner)
-        return Capsule(radius, length, where) if None not in (radius, length) else None
+        if radius is None or length is None:
+            return None
+        return Capsule(radius, length, where)
 
-    def sphere(self, element, where, owner) -> Sphere | None:
+    def sphere(self, element: etree._Element, where: Provenance, owner: str) -> Sphere | None:
         radius = self.required(element, "radius", where, owner)
         return Sphere(radius, where) if radius is not None else None
 
-    def mesh(self, element, where, owner) -> MeshRef | None:
+    def mesh(self, element: etree._Element, where: Provenance, owner: str) -> MeshRef | None:
         filename = element.get("filename")
         if not filename:
             self.issue("<mesh> filename is missing (required)", where, owner)
             return None
-        scale = self.vector(element.get("scale"), 3, "<mesh> scale", where, owner, (1.0, 1.0, 1.0),
-                            bound=self.limits.scale)
+        scale = self.vector3(element.get("scale"), "<mesh> scale", where, owner, (1.0, 1.0, 1.0),
+                             bound=self.limits.scale)
         if scale is not None and any(0 < abs(v) < self.limits.smallest_scale for v in scale):
             self.issue(f"<mesh> scale=\"{_clip(element.get('scale') or '')}\" has a factor "
                        f"smaller than {self.limits.smallest_scale:g} in magnitude", where, owner)
             scale = (1.0, 1.0, 1.0)
-        return MeshRef(filename, scale, where)
+        return MeshRef(filename, scale or (1.0, 1.0, 1.0), where)
 
 
 _SHAPES = {"box": _RobotReader.box, "cylinder": _RobotReader.cylinder,

@@ -8,22 +8,25 @@ the tree is `model/tree.py`'s.
 from __future__ import annotations
 
 import html
-from typing import Any
+from typing import TYPE_CHECKING
 
 from robotdesc.model.tree import children_of, roots
+
+if TYPE_CHECKING:  # elements imports this module at run time
+    from robotdesc.model.elements import Robot
 
 #: Links shown in the tree of the HTML summary, and levels below the root.
 TREE_LINKS = 12
 TREE_DEPTH = 3
 
 
-def total_mass(robot: Any) -> float:
+def total_mass(robot: Robot) -> float:
     """The sum of the declared link masses (kg); links without a mass count 0."""
-    return sum(link.inertial.mass for link in robot.links
-               if link.inertial is not None and link.inertial.mass is not None)
+    return float(sum(link.inertial.mass for link in robot.links
+                     if link.inertial is not None and link.inertial.mass is not None))
 
 
-def degrees_of_freedom(robot: Any) -> int:
+def degrees_of_freedom(robot: Robot) -> int:
     """The number of independently moving joints: not fixed, not a mimic of another.
 
     A floating joint counts 6, a planar joint 3, every other moving joint 1.
@@ -32,12 +35,12 @@ def degrees_of_freedom(robot: Any) -> int:
     return sum(per_type.get(joint.type, 1) for joint in robot.joints if joint.mimic is None)
 
 
-def root_links(robot: Any) -> list[str]:
+def root_links(robot: Robot) -> list[str]:
     """Links that are no joint's child, in document order."""
     return [link.name for link in roots(robot)]
 
 
-def tree_lines(robot: Any, max_links: int = TREE_LINKS, max_depth: int = TREE_DEPTH) -> list[str]:
+def tree_lines(robot: Robot, max_links: int = TREE_LINKS, max_depth: int = TREE_DEPTH) -> list[str]:
     """The top of the tree as indented lines (`└ joint (type) → link`), cut at `max_links`
     lines and `max_depth` levels, saying how many links were left out."""
     below = children_of(robot)
@@ -66,7 +69,7 @@ def tree_lines(robot: Any, max_links: int = TREE_LINKS, max_depth: int = TREE_DE
     return lines
 
 
-def robot_repr(robot: Any) -> str:
+def robot_repr(robot: Robot) -> str:
     """`<Robot 'name': 246 links, 245 joints, 16.3 kg, 9 DoF, from engineer.urdf.xacro>`."""
     source = robot.source.replace("\\", "/").rsplit("/", 1)[-1] if robot.source else ""
     return (f"<Robot {robot.name!r}: {len(robot.links)} links, {len(robot.joints)} joints, "
@@ -74,7 +77,7 @@ def robot_repr(robot: Any) -> str:
             + (f", from {source}" if source else "") + ">")
 
 
-def robot_html(robot: Any) -> str:
+def robot_html(robot: Robot) -> str:
     """A small HTML summary: a table of the counts and the top of the tree."""
     moving = sum(1 for joint in robot.joints if joint.type != "fixed")
     rows = [("name", robot.name), ("source", robot.source or "-"),

@@ -9,8 +9,7 @@ radians; poses are 4x4 homogeneous matrices mapping child-frame coordinates to w
 coordinates, the root links at the world origin.
 
 `robotdesc.model.elements` imports this module (a `Robot`'s repr draws the top of its tree
-through `summary.py`), so the model's classes are read here by their attributes, not imported:
-`Robot`, `Joint` and `Link` below stand for `robotdesc.model.elements.Robot`, `Joint`, `Link`.
+through `summary.py`), so the model's classes are imported here for type checking only.
 """
 
 from __future__ import annotations
@@ -20,19 +19,17 @@ import math
 from collections import defaultdict, deque
 from collections.abc import Collection, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from robotdesc.errors import UsageError
 from robotdesc.spatial import pose_matrix
 
-if TYPE_CHECKING:
+if TYPE_CHECKING:  # elements imports this module at run time: types only here
     import numpy as np
 
-log = logging.getLogger(__name__)
+    from robotdesc.model.elements import Joint, Link, Robot
 
-Robot = Any  # robotdesc.model.elements.Robot
-Joint = Any  # robotdesc.model.elements.Joint
-Link = Any  # robotdesc.model.elements.Link
+log = logging.getLogger(__name__)
 
 #: Joint types with one degree of freedom read from a `<limit>`.
 LIMITED_TYPES = frozenset({"revolute", "prismatic"})
@@ -173,10 +170,15 @@ def adjacent_pairs(robot: Robot, with_geometry: Iterable[str],
                 continue
             seen.add(name)
             if name in solid:
-                pairs.add(tuple(sorted((start, name))))
+                pairs.add(_pair(start, name))
             else:
                 todo.extend(neighbours[name])
     return pairs
+
+
+def _pair(a: str, b: str) -> tuple[str, str]:
+    """The two names in sorted order."""
+    return (a, b) if a <= b else (b, a)
 
 
 def _collapsed_adjacent_pairs(robot: Robot, solid: set[str]) -> set[tuple[str, str]]:
@@ -192,7 +194,7 @@ def _collapsed_adjacent_pairs(robot: Robot, solid: set[str]) -> set[tuple[str, s
             neighbours[b].add(a)
     pairs: set[tuple[str, str]] = set()
     for body, names in members.items():
-        pairs.update(tuple(sorted((x, y))) for i, x in enumerate(names) for y in names[i + 1:])
+        pairs.update(_pair(x, y) for i, x in enumerate(names) for y in names[i + 1:])
         todo, seen = list(neighbours[body]), {body}
         while todo:
             other = todo.pop()
@@ -200,7 +202,7 @@ def _collapsed_adjacent_pairs(robot: Robot, solid: set[str]) -> set[tuple[str, s
                 continue
             seen.add(other)
             if members.get(other):
-                pairs.update(tuple(sorted((x, y))) for x in names for y in members[other])
+                pairs.update(_pair(x, y) for x in names for y in members[other])
             else:
                 todo.extend(neighbours[other])
     return pairs
@@ -342,6 +344,8 @@ def mimic_value(joint: Joint, leader: float) -> float:
     """A mimic joint's value when the joint it follows is at `leader` (rad or m):
     `multiplier * leader + offset` (multiplier 1 and offset 0 when not given)."""
     mimic = joint.mimic
+    if mimic is None:
+        return leader
     return (mimic.multiplier if mimic.multiplier is not None else 1.0) * leader \
         + (mimic.offset if mimic.offset is not None else 0.0)
 
