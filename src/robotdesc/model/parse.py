@@ -61,8 +61,10 @@ log = logging.getLogger(__name__)
 
 _Read = TypeVar("_Read")
 
-_PROVENANCE_ATTRIBUTE = re.compile(
-    rb"""[ \t\r\n]+""" + PROVENANCE_ATTR.encode() + rb"""=(?:"[0-9:;*|@,A-Za-z_.\-]*"|'[0-9:;*|@,A-Za-z_.\-]*')""")
+_PROVENANCE_VALUE = rb"[0-9:;*|@,A-Za-z_.\-]*"
+_PROVENANCE_ATTRIBUTE = re.compile(rb"[ \t\r\n]+" + PROVENANCE_ATTR.encode()
+                                   + rb'=(?:"' + _PROVENANCE_VALUE + rb'"|\'' + _PROVENANCE_VALUE
+                                   + rb"')")
 
 _MARKUP = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>|<[A-Za-z_:][^>]*>", re.DOTALL)
 
@@ -258,7 +260,8 @@ class _RobotReader:
         problem = check_vector(values, self.limits.other if bound is None else bound,
                                self.limits.tiny)
         if problem:
-            self.issue(f"{what}=\"{_clip(text)}\" {problem.replace('is', 'has a value that is', 1)}",
+            reason = problem.replace("is", "has a value that is", 1)
+            self.issue(f"{what}=\"{_clip(text)}\" {reason}",
                        where, owner)
             return default
         return tuple(value + 0.0 for value in values)
