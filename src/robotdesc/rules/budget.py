@@ -53,7 +53,8 @@ def mass_budget(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     expected = settings.expected_mass
     if expected is None:
         return
-    masses = [(link.inertial.mass, link.name) for link in robot.links if has_mass(link)]
+    masses = [(link.inertial.mass, link.name) for link in robot.links
+              if has_mass(link) and link.inertial is not None and link.inertial.mass is not None]
     total = sum(mass for mass, _ in masses)
     difference = total - expected
     if abs(difference) <= settings.mass_tolerance * expected:

@@ -232,7 +232,8 @@ def gazebo_lumps_zero_masses(robot: Robot, ctx: RuleContext) -> Iterator[Finding
         if joint.type != "fixed" or joint.name in preserved:
             continue
         parent, child = robot.link(joint.parent), robot.link(joint.child)
-        if _zero_inertial(parent) and _zero_inertial(child):
+        if child is not None and child.inertial is not None and _zero_inertial(parent) \
+                and _zero_inertial(child):
             yield Finding(f"links '{joint.parent}' and '{joint.child}' (fixed joint "
                           f"'{joint.name}') both declare a mass of 0: Gazebo's URDF->SDF "
                           "conversion lumps them into a NaN centre of mass (0 / 0) and fails "

@@ -65,7 +65,7 @@ def _render_rule(rule_: Rule) -> str:
 
 def _render_options(rule_: Rule) -> list[str]:
     fields = rule_.option_fields()
-    if not fields:
+    if not fields or rule_.options is None:
         return []
     described = _attribute_descriptions(rule_.options)
     rows = ["| Option | Type | Default | Description |",

@@ -8,6 +8,7 @@ from robotdesc.diagnostics import Finding, Severity
 from robotdesc.model.elements import Joint, Robot
 from robotdesc.model.tree import mimicking
 from robotdesc.rules.registry import RuleContext, rule
+from robotdesc.source import Provenance
 
 FAMILY = "mimic"
 
@@ -57,7 +58,7 @@ def mimic_target_missing(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     for joint, target in mimicking(robot):
         if target not in names:
             yield Finding(f"joint '{joint.name}' mimics joint '{target}', which is not defined",
-                          joint.mimic.where or joint.where, f"joint:{joint.name}")
+                          _mimic_where(joint), f"joint:{joint.name}")
 
 
 @rule("J202", "mimic-of-itself", family=FAMILY, severity=Severity.ERROR)
@@ -93,7 +94,7 @@ def mimic_of_itself(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     for joint, target in mimicking(robot):
         if target == joint.name:
             yield Finding(f"joint '{joint.name}' mimics itself",
-                          joint.mimic.where or joint.where, f"joint:{joint.name}")
+                          _mimic_where(joint), f"joint:{joint.name}")
 
 
 @rule("J203", "mimic-type-mismatch", family=FAMILY, severity=Severity.WARNING)
@@ -134,7 +135,7 @@ def mimic_type_mismatch(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     </robot>
     ```
     """
-    joints = {}
+    joints: dict[str, Joint] = {}
     for joint in robot.joints:
         joints.setdefault(joint.name, joint)
     for joint, target_name in mimicking(robot):
@@ -144,7 +145,7 @@ def mimic_type_mismatch(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
         mine, theirs = _MOTION.get(joint.type), _MOTION.get(target.type)
         if mine is None or theirs is None or mine != theirs:
             yield Finding(f"{joint.type} joint '{joint.name}' mimics {target.type} joint "
-                          f"'{target.name}'", joint.mimic.where or joint.where,
+                          f"'{target.name}'", _mimic_where(joint),
                           f"joint:{joint.name}")
 
 
@@ -212,5 +213,10 @@ def mimic_cycle(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
                 head = first[min(circle, key=lambda n: order.get(n, 0))]
                 yield Finding("joints mimic each other in a circle: "
                               + " -> ".join(f"'{n}'" for n in (*circle, circle[0])),
-                              head.mimic.where or head.where, f"joint:{head.name}")
+                              _mimic_where(head), f"joint:{head.name}")
         done.update(path)
+
+
+def _mimic_where(joint: Joint) -> Provenance | None:
+    """Where the joint's `<mimic>` is written, else the joint."""
+    return (joint.mimic.where if joint.mimic is not None else None) or joint.where

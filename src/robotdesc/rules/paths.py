@@ -6,7 +6,7 @@ import re
 from collections.abc import Iterator
 
 from robotdesc.diagnostics import Finding, Severity
-from robotdesc.model.elements import MeshRef, Robot
+from robotdesc.model.elements import Collision, MeshRef, Robot, Visual
 from robotdesc.rules.registry import RuleContext, rule
 
 FAMILY = "paths"
@@ -18,7 +18,9 @@ _WINDOWS_DRIVE = re.compile(r"^[A-Za-z]:[\\/]")
 def _meshes(robot: Robot) -> Iterator[tuple[MeshRef, str]]:
     """Every mesh of every visual and collision, with its stable element name."""
     for link in robot.links:
-        for kind, shapes in (("visual", link.visuals), ("collision", link.collisions)):
+        groups: tuple[tuple[str, tuple[Visual | Collision, ...]], ...] = (
+            ("visual", link.visuals), ("collision", link.collisions))
+        for kind, shapes in groups:
             for index, shape in enumerate(shapes):
                 if isinstance(shape.geometry, MeshRef):
                     yield shape.geometry, f"link:{link.name}/{kind}[{index}]"

@@ -100,7 +100,7 @@ class Rule:
     def default_options(self) -> Any:
         return self.options() if self.options else None
 
-    def option_fields(self) -> list[dataclasses.Field]:
+    def option_fields(self) -> list[dataclasses.Field[Any]]:
         return list(dataclasses.fields(self.options)) if self.options else []
 
 

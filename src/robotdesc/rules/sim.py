@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterator
+from typing import Literal
 from dataclasses import dataclass
 
 from robotdesc.diagnostics import Finding, Severity
@@ -29,7 +30,7 @@ class SettleRuleOptions:
 
     seconds: float = 2.0
     drop_height: float = 0.05
-    hold: str = "position"
+    hold: Literal["position", "passive"] = "position"
 
 
 @rule("D101", "fails-settle-test", family=FAMILY, severity=Severity.ERROR,

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 
 from robotdesc.diagnostics import Finding, Severity
 from robotdesc.model import tree
@@ -416,9 +416,9 @@ def unreadable_value(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
         yield Finding(prefix + issue.message, issue.where, issue.element)
 
 
-def _unique_links(links) -> list[Link]:
+def _unique_links(links: Iterable[Link]) -> list[Link]:
     seen: set[str] = set()
-    unique = []
+    unique: list[Link] = []
     for link in links:
         if link.name not in seen:
             seen.add(link.name)

@@ -43,8 +43,10 @@ class ElementSpec:
         return name in self.children or any(name == n for n, _ in self.extension_children)
 
 
-def _spec(attributes: str = "", children: str = "", *, extension_attributes=(),
-          extension_children=(), judge_children: bool = True) -> ElementSpec:
+def _spec(attributes: str = "", children: str = "", *,
+          extension_attributes: tuple[tuple[str, str], ...] = (),
+          extension_children: tuple[tuple[str, str], ...] = (),
+          judge_children: bool = True) -> ElementSpec:
     return ElementSpec(frozenset(attributes.split()), frozenset(children.split()),
                        tuple(extension_attributes), tuple(extension_children), judge_children)
 

@@ -11,7 +11,7 @@ import dataclasses
 import difflib
 import functools
 import re
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
 from lxml import etree
@@ -288,8 +288,8 @@ def _unknown_names(xml: bytes, path: str, files: tuple[str, ...]) -> tuple[Unkno
 def _once_per_place(found: list[UnknownName]) -> tuple[UnknownName, ...]:
     """One entry per written place: a typo in a macro body is one fix, however many times
     the macro is expanded (the count is added to the hint)."""
-    first: dict[tuple, UnknownName] = {}
-    counts: dict[tuple, int] = {}
+    first: dict[tuple[object, ...], UnknownName] = {}
+    counts: dict[tuple[object, ...], int] = {}
     for unknown in found:
         key = (unknown.kind, unknown.name, unknown.parent, unknown.where.span)
         first.setdefault(key, unknown)
@@ -399,7 +399,7 @@ def _suggest(name: str, preferred: set[str] | frozenset[str],
     return ""
 
 
-def _closest(name: str, pool) -> str | None:
+def _closest(name: str, pool: Iterable[str]) -> str | None:
     lowered = {candidate.lower(): candidate for candidate in pool}
     if name.lower() in lowered:
         return lowered[name.lower()]
