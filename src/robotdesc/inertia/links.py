@@ -30,6 +30,13 @@ def has_mass(link: Link) -> bool:
         and link.inertial.mass > 0
 
 
+def mass_of(link: Link) -> float:
+    """The link's declared mass (kg); 0 when it has none or it is unreadable."""
+    if link.inertial is None or link.inertial.mass is None:
+        return 0.0
+    return link.inertial.mass
+
+
 def is_dynamics_model(robot: Robot) -> bool:
     """The description is meant for dynamics: at least one moving link declares a mass.
 

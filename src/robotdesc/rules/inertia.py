@@ -8,7 +8,7 @@ in `inertia_meshes.py`.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
 from robotdesc.diagnostics import Finding, Severity
@@ -17,11 +17,13 @@ from robotdesc.inertia.links import (
     is_dynamics_model,
     is_moving,
     link_element,
+    mass_of,
     root_links,
 )
 from robotdesc.model.elements import Link, Robot
 from robotdesc.model.tree import parent_joint_of
 from robotdesc.rules.registry import RuleContext, rule
+from robotdesc.source import Provenance
 from robotdesc.spatial import (
     MAX_MATERIAL_DENSITY,
     minimum_trace,
@@ -40,7 +42,7 @@ _CONSUMERS_MISSING = ("Gazebo's URDF-to-SDF conversion drops it together with it
 _NEGLIGIBLE = 1e-9
 
 
-def _where(link: Link):
+def _where(link: Link) -> Provenance | None:
     return link.inertial.where if link.inertial and link.inertial.where else link.where
 
 
@@ -208,7 +210,7 @@ def inertia_not_positive_definite(robot: Robot, ctx: RuleContext) -> Iterator[Fi
         lumped = joint is not None and joint.type == "fixed"
         role = ("moves" if is_moving(link, parents) else "is fixed to its parent" if lumped
                 else "is a root link")
-        if scale <= _NEGLIGIBLE * minimum_trace(inertial.mass):
+        if scale <= _NEGLIGIBLE * minimum_trace(mass_of(link)):
             if not lumped:
                 shown = "is zero" if scale == 0 else f"is zero (largest moment {scale:.3g})"
                 yield Finding(f"link '{link.name}' {role} and has a mass of "
@@ -348,9 +350,10 @@ def implausibly_small_inertia(robot: Robot, ctx: RuleContext) -> Iterator[Findin
         if moments[0] <= 0:
             continue  # I103's finding
         trace = sum(moments)
-        bound = minimum_trace(inertial.mass, density)
+        mass = mass_of(link)
+        bound = minimum_trace(mass, density)
         if trace < bound:
-            radius = math.sqrt(trace / (1.2 * inertial.mass))
+            radius = math.sqrt(trace / (1.2 * mass))
             yield Finding(f"link '{link.name}': moments {_moments(moments)} kg*m^2 are too "
                           f"small for {inertial.mass:g} kg: their sum {trace:.3g} is below "
                           f"{bound:.3g}, the least any solid of that mass can have (a ball of "
@@ -420,10 +423,10 @@ def root_link_inertia(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     share = ctx.options.min_share if ctx.options else RootInertiaOptions.min_share
     if not is_dynamics_model(robot):
         return
-    total = sum(link.inertial.mass for link in robot.links if has_mass(link))
+    total = sum(mass_of(link) for link in robot.links)
     for link in root_links(robot):
-        if has_mass(link) and link.inertial.mass > share * total:
-            yield Finding(f"root link '{link.name}' has a mass of {link.inertial.mass:g} kg, "
+        if has_mass(link) and mass_of(link) > share * total:
+            yield Finding(f"root link '{link.name}' has a mass of {mass_of(link):g} kg, "
                           "which KDL (robot_state_publisher, MoveIt's KDL solvers) ignores: add "
                           "a massless root link joined to it by a fixed joint",
                           _where(link), link_element(link))
@@ -493,5 +496,5 @@ def fixed_link_without_inertial(robot: Robot, ctx: RuleContext) -> Iterator[Find
                           link.where, f"link:{link.name}")
 
 
-def _moments(moments) -> str:
+def _moments(moments: Iterable[float]) -> str:
     return "(" + ", ".join(f"{m:.6g}" for m in moments) + ")"

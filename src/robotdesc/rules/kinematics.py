@@ -1,35 +1,29 @@
-"""Kinematics rules (K1xx: the model as Pinocchio and simulators see it; K2xx: self-collision).
+"""Kinematics rules (K1xx: the model as Pinocchio and simulators see it; K202: no collision
+geometry at all). The self-collision checks K201 and K203 are `rules/self_collision.py`.
 
-K101 and K201 need Pinocchio (`pip install '.[kinematics]'`); without it they are
-skipped with a logged note. The others are pure checks of the model.
+K101 needs Pinocchio (`pip install '.[kinematics]'`); without it it is skipped with a logged
+note. The others are pure checks of the model.
 """
 
 from __future__ import annotations
 
-import logging
 import math
 import re
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 
 from robotdesc.diagnostics import Finding, Severity
 from robotdesc.kinematics.build import KinematicBuildError, build_model
-from robotdesc.kinematics.configuration import (
-    default_configuration,
-    follow_mimics,
-    independent_joints,
-    joint_range,
-    zero_configuration,
-)
+from robotdesc.kinematics.configuration import joint_range, zero_configuration
 from robotdesc.kinematics.mirror import mirror_pairs
-from robotdesc.kinematics.optional import PINOCCHIO_HINT, pinocchio_available
-from robotdesc.kinematics.resolve import mesh_resolver, package_lookup
+from robotdesc.kinematics.optional import pinocchio_or_note
 from robotdesc.model import tree
 from robotdesc.model.elements import Joint, Robot
 from robotdesc.rules.registry import RuleContext, rule
+from robotdesc.source import Provenance
+from robotdesc.spatial import rpy_rotation
 
 FAMILY = "kinematics"
-log = logging.getLogger(__name__)
 
 #: urdfdom refusals that a model rule already reports (reason pattern -> that rule's code).
 _EXPLAINED = (
@@ -40,17 +34,6 @@ _EXPLAINED = (
     (re.compile(r"is not unique"), "S106/S107"),
     (re.compile(r"No link elements"), "S001"),
 )
-_NOTED: set[str] = set()
-
-
-def _pinocchio_or_note(code: str) -> bool:
-    """True when Pinocchio is importable; otherwise log (once per rule) why `code` is skipped."""
-    if pinocchio_available():
-        return True
-    if code not in _NOTED:
-        _NOTED.add(code)
-        log.warning("%s skipped: Pinocchio is not installed; %s", code, PINOCCHIO_HINT)
-    return False
 
 
 @rule("K101", "pinocchio-cannot-build", family=FAMILY, severity=Severity.ERROR,
@@ -78,7 +61,7 @@ def pinocchio_cannot_build(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
       <limit lower="0" upper="2.4" effort="40" velocity="6"/></joint>
     ```
     """
-    if robot.value_issues or not _pinocchio_or_note("K101"):
+    if robot.value_issues or not pinocchio_or_note("K101"):
         return  # unreadable values are S110's; Pinocchio would refuse them too
 
     try:
@@ -283,21 +266,31 @@ def mirrored_joints_differ(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     families: dict[tuple[str, str], list[tuple[str, str, str]]] = {}
     for first, second in mirror_pairs(joint.name for joint in robot.joints):
         a, b = robot.joint(first), robot.joint(second)
+        if a is None or b is None:
+            continue
         reason = _mirror_difference(a, b, options)
         if reason:
-            key = (_DIGITS.sub("#", second), reason.split(" (", 1)[0].split(" [", 1)[0])
-            families.setdefault(key, []).append((first, second, reason))
+            families.setdefault(_family_key(second, reason), []).append((first, second, reason))
     for (pattern, what), members in families.items():
         first, second, reason = members[0]
-        joint = robot.joint(second)
         if len(members) <= options.family_size:
             for first, second, reason in members:
                 yield Finding(f"mirrored joints '{first}' and '{second}' differ: {reason}",
-                              robot.joint(second).where, f"joint:{second}")
+                              _joint_where(robot, second), f"joint:{second}")
             continue
         yield Finding(f"{len(members)} mirrored joint pairs named like '{pattern}' differ in "
                       f"{what}; the first: '{first}' and '{second}': {reason}",
-                      joint.where, f"joint:{second}")
+                      _joint_where(robot, second), f"joint:{second}")
+
+
+def _family_key(second: str, reason: str) -> tuple[str, str]:
+    """Pairs named alike but for their digits, differing in the same way, form one family."""
+    return _DIGITS.sub("#", second), reason.split(" (", 1)[0].split(" [", 1)[0]
+
+
+def _joint_where(robot: Robot, name: str) -> Provenance | None:
+    joint = robot.joint(name)
+    return joint.where if joint is not None else None
 
 
 #: Runs of digits, replaced to group joints of one family (`skin_12_joint` -> `skin_#_joint`).
@@ -338,13 +331,11 @@ _REFLECTIONS = ((1.0, 1.0, 1.0), (-1.0, 1.0, 1.0), (1.0, -1.0, 1.0), (1.0, 1.0, 
 _HALF_TURNS = ((1.0, 1.0, 1.0), (1.0, -1.0, -1.0), (-1.0, 1.0, -1.0), (-1.0, -1.0, 1.0))
 
 
-def _mirrored_rotation_gap(rpy_a, rpy_b) -> float:
+def _mirrored_rotation_gap(rpy_a: Sequence[float], rpy_b: Sequence[float]) -> float:
     """The smallest rotation angle (rad) between frame b and frame a mirrored through a plane
     (P R P), possibly turned by a half turn about one of its own or the parent's axes.
 
     Angles are compared as rotations, so -4.71239 and 1.5708 are the same (modulo 2*pi)."""
-    from robotdesc.spatial import rpy_rotation
-
     ra, rb = rpy_rotation(rpy_a), rpy_rotation(rpy_b)
     best = math.pi
     for p in _REFLECTIONS:
@@ -356,13 +347,13 @@ def _mirrored_rotation_gap(rpy_a, rpy_b) -> float:
     return best
 
 
-def _rotation_angle(r1, r2) -> float:
+def _rotation_angle(r1: Sequence[Sequence[float]], r2: Sequence[Sequence[float]]) -> float:
     """Angle (rad) of the rotation r1^T r2."""
     trace = sum(r1[k][i] * r2[k][i] for i in range(3) for k in range(3))
     return math.acos(max(-1.0, min(1.0, (trace - 1.0) / 2.0)))
 
 
-def _vector(values) -> str:
+def _vector(values: Iterable[float]) -> str:
     return " ".join(f"{v:g}" for v in values)
 
 
@@ -417,6 +408,8 @@ def mirrored_masses_differ(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     options = ctx.options or MirrorMassOptions()
     for first, second in mirror_pairs(link.name for link in robot.links):
         a, b = robot.link(first), robot.link(second)
+        if a is None or b is None:
+            continue
         mass_a, mass_b = tree.link_mass(a), tree.link_mass(b)
         heavy = max(mass_a, mass_b)
         if heavy <= 0 or abs(mass_a - mass_b) <= options.relative_tolerance * heavy:
@@ -425,250 +418,6 @@ def mirrored_masses_differ(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
         yield Finding(f"mirrored links '{first}' and '{second}' weigh {mass_a:g} kg and "
                       f"{mass_b:g} kg ({abs(mass_a - mass_b) / heavy:.0%} apart, tolerance "
                       f"{options.relative_tolerance:.0%})", where, f"link:{second}")
-
-
-@rule("K201", "self-collision-at-default", family=FAMILY, severity=Severity.WARNING,
-      needs=("meshes", "pinocchio"), opt_in=True)
-def self_collision_at_default(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
-    """Finds two links, not adjacent, whose collision geometry overlaps in the default
-    configuration (each joint at 0, or mid-range when 0 is outside its limits, as MoveIt sets
-    it).
-
-    Adjacency is MoveIt Setup Assistant's: links joined by fixed joints are one rigid body and
-    never reported; links whose bodies a joint connects (directly, or through bodies without
-    collision geometry) are adjacent. A pair that also collides at every sampled
-    configuration (links in contact by design, such as a mimic-coupled linkage), that
-    touches only because joints sit at a limit in the default configuration (a gripper
-    closed at 0, a folded rest pose) and parts once they move inward, or whose relative pose
-    one degree of freedom decides (a joint and those that mimic it: the fingers and knuckles
-    of a gripper touching at its default opening), is K203's.
-
-    Opt-in (`--select K201`): on real packages about a third of its findings are contacts
-    by design that no rule can yet tell from an overlap (two-finger grippers closed at 0 with
-    independent fingers, a fabric bellows through a base, legs together at rest); see
-    docs/precision.md. `robotdesc srdf` writes the whole collision matrix either way.
-
-    Why is this bad?
-    A robot that starts in self-collision cannot be planned for: MoveIt rejects the start
-    state, and a simulator pushes the links apart at spawn. Usually a collision mesh is too
-    big (a visual mesh reused, a hull over a concave part) or an origin is wrong. If the
-    overlap is real and harmless, disable the pair in the SRDF (`robotdesc srdf`).
-
-    Example
-    ```xml
-    <robot name="arm">
-      <link name="base"><collision><geometry><box size="0.4 0.4 0.4"/></geometry></collision></link>
-      <link name="upper"><collision><geometry><box size="0.1 0.1 0.3"/></geometry></collision></link>
-      <link name="fore"><collision><origin xyz="0 0 -0.45"/>
-        <geometry><box size="0.1 0.1 0.3"/></geometry></collision></link>
-      <joint name="shoulder" type="continuous"><parent link="base"/><child link="upper"/>
-        <origin xyz="0 0 0.3"/></joint>
-      <joint name="elbow" type="continuous"><parent link="upper"/><child link="fore"/>
-        <origin xyz="0 0 0.3"/></joint>
-    </robot>
-    ```
-
-    Use instead:
-    ```xml
-    <robot name="arm">
-      <link name="base"><collision><geometry><box size="0.4 0.4 0.4"/></geometry></collision></link>
-      <link name="upper"><collision><geometry><box size="0.1 0.1 0.3"/></geometry></collision></link>
-      <link name="fore"><collision><origin xyz="0 0 0.15"/>
-        <geometry><box size="0.1 0.1 0.3"/></geometry></collision></link>
-      <joint name="shoulder" type="continuous"><parent link="base"/><child link="upper"/>
-        <origin xyz="0 0 0.3"/></joint>
-      <joint name="elbow" type="continuous"><parent link="upper"/><child link="fore"/>
-        <origin xyz="0 0 0.3"/></joint>
-    </robot>
-    ```
-    """
-    found = _self_collisions(robot, ctx, "K201")
-    if found is None:
-        return
-    colliding, always, at_limits = found
-    for first, second in colliding:
-        if (first, second) in always or (first, second) in at_limits:
-            continue
-        link = robot.link(second)
-        yield Finding(f"links '{first}' and '{second}' collide in the default configuration "
-                      "(they are not adjacent, even with fixed joints merged)",
-                      link.where if link else None, f"link:{second}")
-
-
-#: The last robot's (default collisions, always-in-contact pairs, pairs in contact at joint
-#: limits): K201 and K203 share them.
-_COLLISIONS: dict[str, tuple] = {}
-#: Joints at a limit in the default configuration are moved this fraction of their range
-#: inward to tell a contact at the limit (a closed gripper) from an overlap.
-INWARD_FRACTION = 0.1
-
-
-def _self_collisions(robot: Robot, ctx: RuleContext, code: str):
-    """(pairs colliding at the default configuration, the subset colliding at every sampled
-    configuration), or None when the check cannot run."""
-    cached = _COLLISIONS.get("last")
-    if cached is not None and cached[0] is robot:
-        return cached[1]
-    if sum(tree.has_collision(link) for link in robot.links) < 2:
-        return None
-    if not _pinocchio_or_note(code):
-        return None
-    from robotdesc.srdf.matrix import always_in_contact, default_collisions, prepare_scene
-
-    try:
-        prepared = prepare_scene(robot, _mesh_path(robot, ctx))
-    except KinematicBuildError:
-        return None  # K101 or a structural rule reports it
-    colliding = default_collisions(prepared)
-    always = set(always_in_contact(prepared, colliding))
-    at_limits = _contact_at_limits(robot, prepared, [p for p in colliding if p not in always])
-    at_limits |= one_dof_pairs(robot, [p for p in colliding if p not in always])
-    result = (colliding, always, at_limits)
-    _COLLISIONS["last"] = (robot, result)
-    return result
-
-
-def _contact_at_limits(robot: Robot, prepared, pairs: list[tuple[str, str]]
-                       ) -> set[tuple[str, str]]:
-    """The pairs that part when every independent joint sitting at a limit in the default
-    configuration moves `INWARD_FRACTION` of its range inward (mimic joints following)."""
-    from robotdesc.srdf.matrix import collisions_at
-
-    if not pairs:
-        return set()
-    default = default_configuration(robot)
-    moved: dict[str, float] = {}
-    for joint in independent_joints(robot):
-        found = joint_range(joint)
-        value = default.get(joint.name)
-        if found is None or not found.bounded or value is None:
-            continue
-        span = found.upper - found.lower
-        if span <= 0:
-            continue
-        if abs(value - found.lower) <= 1e-9 * span:
-            moved[joint.name] = value + INWARD_FRACTION * span
-        elif abs(value - found.upper) <= 1e-9 * span:
-            moved[joint.name] = value - INWARD_FRACTION * span
-    if not moved:
-        return set()
-    drivers = {j.name: default.get(j.name, 0.0) for j in independent_joints(robot)}
-    configuration = follow_mimics(robot, {**drivers, **moved})
-    still = set(collisions_at(prepared, configuration, list(pairs)))
-    return {pair for pair in pairs if pair not in still}
-
-
-def one_dof_pairs(robot: Robot, pairs: list[tuple[str, str]]) -> set[tuple[str, str]]:
-    """The pairs whose relative pose one degree of freedom decides: every moving joint on the
-    tree path between them is one joint or mimics it (the fingers or knuckles of a gripper).
-
-    Such a pair in contact at the default configuration, but not at every sampled one, is a
-    linkage touching at its default position (a gripper closed at 0): K203's "Default", not
-    an overlap to fix.
-    """
-    parent_joint = tree.parent_joint_of(robot)
-    joints = {joint.name: joint for joint in robot.joints}
-
-    def driver(joint: Joint) -> str:
-        seen = {joint.name}
-        while joint.mimic is not None and joint.mimic.joint in joints \
-                and joint.mimic.joint not in seen:
-            joint = joints[joint.mimic.joint]
-            seen.add(joint.name)
-        return joint.name
-
-    def path_up(link: str) -> list[str]:
-        chain, seen = [link], {link}
-        while link in parent_joint and parent_joint[link].parent not in seen:
-            link = parent_joint[link].parent
-            chain.append(link)
-            seen.add(link)
-        return chain
-
-    found = set()
-    for first, second in pairs:
-        up_first, up_second = path_up(first), path_up(second)
-        common = set(up_first) & set(up_second)
-        if not common:
-            continue
-        below = [link for link in up_first if link not in common] + \
-            [link for link in up_second if link not in common]
-        drivers = {driver(parent_joint[link]) for link in below
-                   if parent_joint[link].type not in ("fixed", "floating", "planar")}
-        if len(drivers) == 1:
-            found.add((first, second))
-    return found
-
-
-@rule("K203", "links-always-in-contact", family=FAMILY, severity=Severity.INFO,
-      needs=("meshes", "pinocchio"))
-def links_always_in_contact(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
-    """Finds pairs of links, not adjacent, whose collision geometry overlaps at the default
-    configuration and at every sampled configuration of the joints: links in contact by
-    design (the bars of a mimic-coupled four-bar linkage, a hand's safety box). They are
-    reported once, with the SRDF lines that disable them.
-
-    Pairs in contact at the default configuration only because joints sit at a limit there
-    (fingers of a gripper closed at 0, an arm folded into its rest pose), which part when
-    those joints move a tenth of their range inward, and pairs whose relative pose one
-    degree of freedom decides (a joint and the joints that mimic it: a gripper's fingers and
-    knuckles), are reported in a second finding: MoveIt's Setup Assistant disables them with
-    reason "Default".
-
-    Why is this bad?
-    It is not a mistake in the URDF, but MoveIt treats the robot as always in
-    self-collision until the SRDF disables these pairs (`robotdesc srdf` writes the whole
-    matrix).
-
-    Example
-    ```xml
-    <!-- two fingers whose collision boxes overlap at every opening -->
-    <robot name="gripper">
-      <link name="palm"/>
-      <link name="left"><collision><geometry><box size="0.1 0.02 0.05"/></geometry></collision></link>
-      <link name="right"><collision><geometry><box size="0.1 0.02 0.05"/></geometry></collision></link>
-      <joint name="left_joint" type="prismatic"><parent link="palm"/><child link="left"/>
-        <axis xyz="1 0 0"/><limit lower="0" upper="0.01" effort="10" velocity="0.1"/></joint>
-      <joint name="right_joint" type="prismatic"><parent link="palm"/><child link="right"/>
-        <axis xyz="-1 0 0"/><limit lower="0" upper="0.01" effort="10" velocity="0.1"/>
-        <mimic joint="left_joint"/></joint>
-    </robot>
-    ```
-
-    Use instead (in the SRDF):
-    ```xml
-    <disable_collisions link1="left" link2="right" reason="Always"/>
-    ```
-    """
-    found = _self_collisions(robot, ctx, "K203")
-    if found is None:
-        return
-    colliding, always, at_limits = found
-    for chosen, reason, what in (
-            (always, "Always", "are in contact at every sampled configuration (by design)"),
-            (at_limits, "Default", "are in contact at the default configuration of a "
-             "linkage or joints at a limit (a closed gripper, a folded rest pose), and part "
-             "when those joints move")):
-        pairs = [pair for pair in colliding if pair in chosen]
-        if not pairs:
-            continue
-        lines = "; ".join(f'<disable_collisions link1="{a}" link2="{b}" reason="{reason}"/>'
-                          for a, b in pairs)
-        link = robot.link(pairs[0][1])
-        yield Finding(f"{len(pairs)} link pair(s) {what}: "
-                      f"{', '.join(f'{a}/{b}' for a, b in pairs)}; disable them in the "
-                      f"SRDF: {lines}", link.where if link else robot.where,
-                      f"link:{pairs[0][1]}", "\n".join(lines.split("; ")))
-
-
-def _mesh_path(robot: Robot, ctx: RuleContext):
-    """Resolve meshes through the lint's mesh context when there is one (it knows the
-    --package-path folders and the config), else through the environment's package chain."""
-    lookup = getattr(ctx.meshes, "lookup", None)
-    if lookup is not None:
-        return lambda mesh: lookup(mesh).resolution.path
-
-    return mesh_resolver(robot, package_lookup(robot.source or "."))
 
 
 @rule("K202", "no-collision-geometry", family=FAMILY, severity=Severity.WARNING)

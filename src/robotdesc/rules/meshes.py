@@ -9,13 +9,23 @@ allows absolute paths.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+import math
+from collections.abc import Callable, Iterator
+from typing import TYPE_CHECKING
 
 from robotdesc.diagnostics import Finding, Severity
 from robotdesc.inertia.links import is_dynamics_model
-from robotdesc.mesh.records import MassMethod
-from robotdesc.model.elements import Robot
+from robotdesc.mesh.records import MassMethod, MeshSummary
+from robotdesc.model.elements import Link, MeshRef, Robot
 from robotdesc.rules.registry import RuleContext, rule
+
+if TYPE_CHECKING:
+    from robotdesc.mesh.context import MeshLookup
+
+#: One `<mesh>` as the rules see it: link, "visual"/"collision", index, reference, lookup.
+MeshEntry = tuple[Link, str, int, MeshRef, "MeshLookup"]
+#: A health check: a problem's message for a mesh summary, or None.
+HealthCheck = Callable[[MeshSummary], "str | None"]
 
 FAMILY = "meshes"
 NEEDS = ("meshes",)
@@ -23,11 +33,11 @@ NEEDS = ("meshes",)
 DUMMY_MASS = 1e-3
 
 
-def _element(link, kind: str, index: int) -> str:
+def _element(link: Link, kind: str, index: int) -> str:
     return f"link:{link.name}/{kind}[{index}]"
 
 
-def _lookups(ctx: RuleContext, physical_only: bool = False) -> Iterator[tuple]:
+def _lookups(ctx: RuleContext, physical_only: bool = False) -> Iterator[MeshEntry]:
     """(link, kind, index, reference, lookup) per `<mesh>`; `physical_only`: only meshes
     whose volume robotdesc uses (see `_volume_used`)."""
     if ctx.meshes is None:
@@ -39,7 +49,7 @@ def _lookups(ctx: RuleContext, physical_only: bool = False) -> Iterator[tuple]:
         yield link, kind, index, ref, ctx.meshes.lookup(ref)
 
 
-def _volume_used(link, kind: str, source: str) -> bool:
+def _volume_used(link: Link, kind: str, source: str) -> bool:
     """Collision meshes (engines collide with their volume), and visual meshes of a link
     whose declared mass properties are judged from them: the link has an `<inertial>` with
     a positive mass, and visual geometry is the configured source or the link has no
@@ -59,7 +69,7 @@ def _resolve_problems(ctx: RuleContext, kinds: set[str]) -> Iterator[Finding]:
             yield Finding(problem.message, ref.where, _element(link, kind, index))
 
 
-def _mesh_errors(ctx: RuleContext, kinds: set[str] | None, exclude: set[str] = frozenset()
+def _mesh_errors(ctx: RuleContext, kinds: set[str] | None, exclude: frozenset[str] = frozenset()
                  ) -> Iterator[Finding]:
     for link, kind, index, ref, found in _lookups(ctx):
         error = found.error
@@ -252,7 +262,7 @@ def malformed_mesh_file(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     </link>
     ```
     """
-    yield from _mesh_errors(ctx, None, exclude={"lfs-pointer"})
+    yield from _mesh_errors(ctx, None, exclude=frozenset({"lfs-pointer"}))
 
 
 @rule("M116", "mesh-broken-material-reference", family=FAMILY, severity=Severity.WARNING,
@@ -288,9 +298,10 @@ def mesh_broken_material_reference(robot: Robot, ctx: RuleContext) -> Iterator[F
     seen: set[str] = set()
     for link, kind, index, ref, found in _lookups(ctx):
         summary = found.summary
-        if summary is None or not summary.broken_references or found.resolution.path in seen:
+        path = found.resolution.path
+        if summary is None or not summary.broken_references or path is None or path in seen:
             continue
-        seen.add(found.resolution.path)
+        seen.add(path)
         problems = summary.broken_references
         listed = "; ".join(problems[:3]) + (f"; and {len(problems) - 3} more"
                                             if len(problems) > 3 else "")
@@ -343,12 +354,12 @@ def mesh_in_millimetres(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
                           _element(link, kind, index))
 
 
-def _diagonal(summary) -> float:
+def _diagonal(summary: MeshSummary) -> float:
     x, y, z = summary.extent
-    return (x * x + y * y + z * z) ** 0.5
+    return math.sqrt(x * x + y * y + z * z)
 
 
-def _health_findings(ctx: RuleContext, check) -> Iterator[Finding]:
+def _health_findings(ctx: RuleContext, check: HealthCheck) -> Iterator[Finding]:
     for link, kind, index, ref, found in _lookups(ctx, physical_only=True):
         if found.summary is not None:
             message = check(found.summary)
@@ -392,7 +403,7 @@ def mesh_not_watertight(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     </link>
     ```
     """
-    def check(summary):
+    def check(summary: MeshSummary) -> str | None:
         health = summary.health
         if health.watertight or (not health.boundary_edges
                                  and summary.method is MassMethod.EXACT):
@@ -432,7 +443,7 @@ def mesh_inconsistent_winding(robot: Robot, ctx: RuleContext) -> Iterator[Findin
     </link>
     ```
     """
-    def check(summary):
+    def check(summary: MeshSummary) -> str | None:
         if summary.health.consistent_winding:
             return None
         return (f"has {summary.health.misoriented_edges} edges where the winding flips; "
@@ -463,7 +474,7 @@ def mesh_inverted(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     </link>
     ```
     """
-    def check(summary):
+    def check(summary: MeshSummary) -> str | None:
         if summary.signed_volume < 0 and summary.health.encloses_volume:
             return (f"is inverted: its faces point inward (signed volume "
                     f"{summary.signed_volume:.4g} m^3)")
@@ -495,7 +506,7 @@ def mesh_degenerate_faces(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     </link>
     ```
     """
-    def check(summary):
+    def check(summary: MeshSummary) -> str | None:
         if summary.properties is None:
             return "encloses no volume (all its points are coplanar)"
         count = summary.health.degenerate_faces
@@ -539,7 +550,7 @@ def collision_uses_visual_mesh(robot: Robot, ctx: RuleContext) -> Iterator[Findi
     visual_paths: dict[str, set[str]] = {}
     entries = list(_lookups(ctx))
     for link, kind, _index, _ref, found in entries:
-        if kind == "visual" and found.resolution.ok:
+        if kind == "visual" and found.resolution.ok and found.resolution.path is not None:
             visual_paths.setdefault(link.name, set()).add(found.resolution.path)
     for link, kind, index, ref, found in entries:
         if kind != "collision" or not found.resolution.ok:
