@@ -5,8 +5,8 @@ import pytest
 
 pytest.importorskip("pinocchio")
 
-from kinematics.robots import ARM, robot  # noqa: E402
-from robotdesc.kinematics.build import KinematicBuildError, build_model  # noqa: E402
+from kinematics.robots import ARM, robot
+from robotdesc.kinematics.build import KinematicBuildError, build_model
 
 
 def test_pinocchio_reason_is_mapped_to_the_joint_line() -> None:

@@ -6,11 +6,11 @@ import pytest
 
 pytest.importorskip("pinocchio")
 
-from support import REPO  # noqa: E402
+from support import REPO
 
-from kinematics.robots import ARM, robot  # noqa: E402
-from robotdesc.errors import UsageError  # noqa: E402
-from robotdesc.kinematics.info import robot_info  # noqa: E402
+from kinematics.robots import ARM, robot
+from robotdesc.errors import UsageError
+from robotdesc.kinematics.info import robot_info
 
 
 def test_counts_mass_and_centre_of_mass() -> None:
@@ -39,11 +39,11 @@ def test_info_command_prints_json(tmp_path) -> None:
     path = tmp_path / "arm.urdf"
     path.write_text(ARM)
     done = subprocess.run([sys.executable, "-m", "robotdesc", "info", str(path), "--format",
-                           "json", "--q", "elbow=0.3"], capture_output=True, text=True,
+                           "json", "--q", "elbow=0.3"], check=False, capture_output=True, text=True,
                           cwd=REPO, timeout=120)
     assert done.returncode == 0, done.stderr
     report = json.loads(done.stdout)
     assert report["dof"] == 3 and report["configuration"]["elbow"] == 0.3
     bad = subprocess.run([sys.executable, "-m", "robotdesc", "info", str(path), "--q", "elbow"],
-                         capture_output=True, text=True, cwd=REPO, timeout=120)
+                         check=False, capture_output=True, text=True, cwd=REPO, timeout=120)
     assert bad.returncode == 2 and "JOINT=VALUE" in bad.stderr

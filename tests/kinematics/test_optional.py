@@ -17,10 +17,10 @@ def test_missing_pinocchio_is_an_input_error_that_says_how_to_install(monkeypatc
 
 
 def test_rules_needing_pinocchio_are_skipped_with_a_note(monkeypatch, caplog) -> None:
-    import robotdesc.rules.kinematics as family
+    from robotdesc.kinematics import optional
 
-    monkeypatch.setattr(family, "pinocchio_available", lambda: False)
-    monkeypatch.setattr(family, "_NOTED", set())
+    monkeypatch.setattr(optional, "pinocchio_available", lambda: False)
+    monkeypatch.setattr(optional, "_NOTED", set())
     caplog.set_level(logging.WARNING, logger="robotdesc")
     arm = robot(ARM)
     assert list(run_rule(get_rule("K201"), arm, RuleContext())) == []

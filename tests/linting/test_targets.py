@@ -57,16 +57,16 @@ def test_config_targets_replace_discovery_for_the_files_they_govern(tmp_path) ->
     ("<robot name='r'><link name='a'/></robot>", "robot"),
     ("<robot xmlns:xacro='http://www.ros.org/wiki/xacro'><xacro:macro name='m'/></robot>",
      "library"),
-    ("<robot xmlns:xacro='http://www.ros.org/wiki/xacro'><xacro:property name='p' value='1'/>"
-     "<material name='grey'/></robot>", "library"),
-    ("<robot xmlns:xacro='http://www.ros.org/wiki/xacro'><xacro:include filename='a.xacro'/>"
-     "<xacro:m/></robot>", "robot"),
-    ("<robot xmlns:xacro='http://www.ros.org/wiki/xacro'><xacro:include filename='a.xacro'/>"
-     "</robot>", "robot"),
-    ("<robot xmlns:xacro='http://www.ros.org/wiki/xacro'><xacro:if value='1'>"
-     "<link name='a'/></xacro:if></robot>", "robot"),
-    ("<robot xmlns:xacro='http://wiki.ros.org/xacro'><xacro:include filename='a.xacro'/>"
-     "<xacro:macro name='m'/></robot>", "library"),
+    (("<robot xmlns:xacro='http://www.ros.org/wiki/xacro'><xacro:property name='p' value='1'/>"
+     "<material name='grey'/></robot>"), "library"),
+    (("<robot xmlns:xacro='http://www.ros.org/wiki/xacro'><xacro:include filename='a.xacro'/>"
+     "<xacro:m/></robot>"), "robot"),
+    (("<robot xmlns:xacro='http://www.ros.org/wiki/xacro'><xacro:include filename='a.xacro'/>"
+     "</robot>"), "robot"),
+    (("<robot xmlns:xacro='http://www.ros.org/wiki/xacro'><xacro:if value='1'>"
+     "<link name='a'/></xacro:if></robot>"), "robot"),
+    (("<robot xmlns:xacro='http://wiki.ros.org/xacro'><xacro:include filename='a.xacro'/>"
+     "<xacro:macro name='m'/></robot>"), "library"),
     ("<launch/>", "other"),
     ("<robot><link", "robot"),  # malformed: linted so that the syntax error is reported
 ])

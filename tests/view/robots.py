@@ -27,7 +27,7 @@ URDF = """<?xml version="1.0"?>
   </link>
   <link name="finger_left">
     <inertial><mass value="0.1"/>
-      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>
+      <inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="0.5"/></inertial>
     <visual><geometry><mesh filename="package://demo/meshes/block.stl" scale="0.01 0.01 0.05"/>
       </geometry></visual>
   </link>

@@ -20,6 +20,7 @@ import os
 import stat
 import sys
 from pathlib import Path
+from typing import Any
 
 from robotdesc._version import code_id, module_stamp
 from robotdesc.cache_dir import read_regular_file, write_entry
@@ -38,7 +39,7 @@ def _versions() -> dict[str, str]:
             "python": ".".join(map(str, sys.version_info[:3]))}
 
 
-def cache_key(settings: dict) -> str:
+def cache_key(settings: dict[str, object]) -> str:
     """A hex digest of everything besides file contents that decides an expansion."""
     material = json.dumps({"format": _FORMAT, "versions": _versions(), **settings},
                           sort_keys=True, default=str)
@@ -110,21 +111,22 @@ def store(cache_dir: Path | None, key: str, expanded: Expanded) -> None:
         log.warning("expansion cache: cannot write %s (%s)", entry, exc)
 
 
-def _encode(expanded: Expanded) -> dict:
+def _encode(expanded: Expanded) -> dict[str, Any]:
     data = dataclasses.asdict(expanded)
     data["xml"] = expanded.xml.decode("utf-8")
     return data
 
 
-def _decode(data: dict) -> Expanded:
-    def span(value):
+def _decode(data: dict[str, Any]) -> Expanded:
+    def span(value: dict[str, Any] | None) -> Span | None:
         return Span(**value) if value else None
 
     return Expanded(
         source=data["source"], xml=data["xml"].encode("utf-8"), files=tuple(data["files"]),
         files_read=tuple(data["files_read"]),
         packages=tuple(ResolvedPackage(**p) for p in data["packages"]),
-        macro_recursion=tuple(MacroRecursion(m["macro"], m["depth"], span(m["defined_at"]),
+        macro_recursion=tuple(MacroRecursion(m["macro"], m["depth"],
+                                             span(m["defined_at"]) or Span(data["source"]),
                                              span(m["called_at"]))
                               for m in data["macro_recursion"]),
         from_xacro=data["from_xacro"], args=tuple(tuple(a) for a in data["args"]),

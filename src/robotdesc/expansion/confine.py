@@ -32,6 +32,7 @@ import sys
 import sysconfig
 from collections.abc import Iterable
 from dataclasses import dataclass
+from types import ModuleType
 
 log = logging.getLogger(__name__)
 
@@ -144,9 +145,15 @@ class Support:
 _libc = ctypes.CDLL(None, use_errno=True) if sys.platform.startswith("linux") else None
 
 
-def _syscall(number: int, *args) -> int:
-    assert _libc is not None
-    result = _libc.syscall(ctypes.c_long(number), *args)
+def _lib() -> ctypes.CDLL:
+    """The C library (Linux only; the callers run there)."""
+    if _libc is None:
+        raise ConfinementError("no C library to confine with (not Linux)")
+    return _libc
+
+
+def _syscall(number: int, *args: object) -> int:
+    result = int(_lib().syscall(ctypes.c_long(number), *args))
     if result < 0:
         code = ctypes.get_errno()
         raise OSError(code, os.strerror(code))
@@ -164,12 +171,13 @@ def landlock_abi() -> int:
         return 0
 
 
-def _load_pyseccomp():
+def _load_pyseccomp() -> ModuleType:
     try:
         import pyseccomp
     except (ImportError, OSError, AttributeError) as exc:  # not installed, or no libseccomp.so
         raise ConfinementError(f"libseccomp is not usable ({exc})") from exc
-    return pyseccomp
+    module: ModuleType = pyseccomp
+    return module
 
 
 @functools.lru_cache(maxsize=1)
@@ -181,7 +189,7 @@ def probe() -> Support:
     if abi < 1:
         return Support(False, "the kernel has no Landlock (Linux 5.13 or newer with Landlock "
                               "enabled is needed)")
-    if _libc.prctl(_PR_GET_SECCOMP, 0, 0, 0, 0) < 0:
+    if _lib().prctl(_PR_GET_SECCOMP, 0, 0, 0, 0) < 0:
         return Support(False, "the kernel has no seccomp filters", abi)
     try:
         pyseccomp = _load_pyseccomp()
@@ -206,8 +214,9 @@ def code_roots() -> tuple[str, ...]:
     candidates.append(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # robotdesc/
     for name in ("xacro", "yaml", "lxml"):
         module = sys.modules.get(name)
-        if module is not None and getattr(module, "__file__", None):
-            candidates.append(os.path.dirname(os.path.abspath(module.__file__)))
+        file = getattr(module, "__file__", None) if module is not None else None
+        if file:
+            candidates.append(os.path.dirname(os.path.abspath(file)))
     roots: list[str] = []
     for candidate in candidates:
         if candidate and os.path.exists(candidate):
@@ -241,7 +250,7 @@ class _CapData(ctypes.Structure):
 
 
 def _prctl(option: int, arg: int = 0) -> int:
-    result = _libc.prctl(option, ctypes.c_ulong(arg), 0, 0, 0)
+    result = int(_lib().prctl(option, ctypes.c_ulong(arg), 0, 0, 0))
     if result < 0:
         code = ctypes.get_errno()
         raise OSError(code, os.strerror(code))
@@ -251,7 +260,7 @@ def _prctl(option: int, arg: int = 0) -> int:
 def _capabilities() -> tuple[int, int]:
     header = _CapHeader(_CAP_VERSION_3, 0)
     data = (_CapData * 2)()
-    if _libc.capget(ctypes.byref(header), data) < 0:
+    if _lib().capget(ctypes.byref(header), data) < 0:
         code = ctypes.get_errno()
         raise OSError(code, os.strerror(code))
     effective = data[0].effective | (data[1].effective << 32)
@@ -271,10 +280,10 @@ def drop_privileges() -> None:
                 if exc.errno == errno.EINVAL:  # past the kernel's last capability
                     break
                 raise
-        _libc.prctl(_PR_CAP_AMBIENT, _PR_CAP_AMBIENT_CLEAR_ALL, 0, 0, 0)  # EINVAL before 4.3
+        _lib().prctl(_PR_CAP_AMBIENT, _PR_CAP_AMBIENT_CLEAR_ALL, 0, 0, 0)  # EINVAL before 4.3
         header = _CapHeader(_CAP_VERSION_3, 0)
         data = (_CapData * 2)()
-        if _libc.capset(ctypes.byref(header), data) < 0:
+        if _lib().capset(ctypes.byref(header), data) < 0:
             code = ctypes.get_errno()
             raise OSError(code, os.strerror(code))
     if _capabilities() != (0, 0) or _prctl(_PR_GET_NO_NEW_PRIVS) != 1:
@@ -322,7 +331,7 @@ def restrict_syscalls(pid: int) -> None:
     rules.set_attr(sc.Attr.ACT_BADARCH, kill)  # other ABIs (int 0x80, x32) are not allowed
     rules.set_attr(sc.Attr.CTL_TSYNC, 1)
 
-    def add(action: int, name: str, *args) -> None:
+    def add(action: int, name: str, *args: object) -> None:
         if sc.resolve_syscall(sc.Arch.NATIVE, name) < 0:
             return  # not a system call on this architecture
         rules.add_rule(action, name, *args)

@@ -115,7 +115,7 @@ def _names_of(name: str | None, folder: Path) -> tuple[str, ...]:
     """The names a package folder answers to: its package.xml name and, in an install space
     (`.../share/<folder>`), the folder's name, by which ament finds it (example-robot-data's
     package.xml says example_robot_descriptions)."""
-    names = (name,) if name else ()
+    names: tuple[str, ...] = (name,) if name else ()
     if folder.parent.name == "share" and folder.name not in names:
         names += (folder.name,)
     return names
@@ -159,7 +159,7 @@ class PackageResolver:
         """
         self.config = config
         self._resolved: dict[str, ResolvedPackage] = {}
-        self._explicit: dict[str, Path] | None = None
+        self._explicit: dict[str, tuple[Path, str]] | None = None
         self._workspace: dict[str, Path] | None = None
         self._ros_path: dict[str, Path] | None = None
         self._known: dict[str, ResolvedPackage] | None = None

@@ -10,6 +10,7 @@ import signal
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 from robotdesc import errors
 from robotdesc.expansion import confine
@@ -229,11 +230,11 @@ def _crash(returncode: int, path: Path, limits: WorkerLimits) -> errors.Robotdes
     return errors.RobotdescError(f"the xacro worker died (exit status {returncode})")
 
 
-def _span(value) -> Span | None:
+def _span(value: list[Any] | None) -> Span | None:
     return Span(value[0], value[1], value[2] if len(value) > 2 else 0) if value else None
 
 
-def _failure(answer: dict, path: Path) -> errors.RobotdescError:
+def _failure(answer: dict[str, Any], path: Path) -> errors.RobotdescError:
     kind = answer["kind"]
     if kind == "InternalError":
         log.debug("worker traceback:\n%s", answer.get("traceback", ""))
@@ -243,7 +244,7 @@ def _failure(answer: dict, path: Path) -> errors.RobotdescError:
     return _ERROR_KINDS[kind](answer["message"], span, chain)
 
 
-def _expanded(answer: dict, path: Path, args: dict[str, str]) -> Expanded:
+def _expanded(answer: dict[str, Any], path: Path, args: dict[str, str]) -> Expanded:
     recursion = tuple(MacroRecursion(name, depth, _span(defined) or Span(str(path)), _span(called))
                       for name, depth, defined, called in answer["macro_recursion"])
     return Expanded(

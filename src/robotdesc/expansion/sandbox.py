@@ -82,7 +82,7 @@ class Guard:
         if real not in self.data_roots:
             self.data_roots.append(real)
 
-    def __call__(self, event: str, args: tuple) -> None:
+    def __call__(self, event: str, args: tuple[object, ...]) -> None:
         if not self.armed:
             return
         if event == "open":
@@ -91,7 +91,7 @@ class Guard:
             raise Forbidden(f"safe mode refuses '{event}' (a xacro expression tried to reach "
                             f"the operating system); use --trusted only for files you trust")
 
-    def _check_open(self, args: tuple) -> None:
+    def _check_open(self, args: tuple[object, ...]) -> None:
         path, mode, flags = (list(args) + [None, None, None])[:3]
         if not isinstance(path, (str, bytes, os.PathLike)):
             return  # an already open file descriptor

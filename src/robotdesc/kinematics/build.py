@@ -13,7 +13,7 @@ import sys
 import tempfile
 import threading
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from robotdesc.errors import InputError
 from robotdesc.kinematics.optional import import_pinocchio
@@ -21,6 +21,9 @@ from robotdesc.kinematics.urdf_text import MeshPath, pinocchio_urdf
 from robotdesc.model.elements import Robot
 from robotdesc.model.tree import tree_problem
 from robotdesc.source import Provenance
+
+if TYPE_CHECKING:
+    from typing_extensions import Self  # typing.Self from Python 3.11
 
 _NAMES = re.compile(r"\[([^\]]*)\]")
 _CAPTURE_LOCK = threading.Lock()
@@ -160,7 +163,7 @@ def explain(robot: Robot, captured: str, fallback: str) -> BuildProblem:
 class _StderrCapture:
     """Redirect the process's file descriptor 2 to a temporary file (C libraries write there)."""
 
-    def __enter__(self) -> "_StderrCapture":
+    def __enter__(self) -> Self:
         sys.stderr.flush()
         self.text = ""
         self._file = tempfile.TemporaryFile()

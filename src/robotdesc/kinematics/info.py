@@ -4,8 +4,8 @@ and bounding box (Pinocchio for the kinematics). Lengths in m, masses in kg."""
 from __future__ import annotations
 
 from collections import Counter
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Mapping
 
 import numpy as np
 

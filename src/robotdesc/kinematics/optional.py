@@ -3,9 +3,12 @@
 from __future__ import annotations
 
 import importlib.util
+import logging
 from types import ModuleType
 
 from robotdesc.errors import InputError
+
+log = logging.getLogger(__name__)
 
 #: What to tell a user who lacks Pinocchio.
 PINOCCHIO_HINT = "install it with: pip install '.[kinematics]'  (the `pin` package)"
@@ -23,6 +26,21 @@ def pinocchio_available() -> bool:
     return importlib.util.find_spec("pinocchio") is not None
 
 
+#: The checks already noted as skipped (each is noted once per process).
+_NOTED: set[str] = set()
+
+
+def pinocchio_or_note(what: str) -> bool:
+    """True when Pinocchio is importable; otherwise log (once per `what`, e.g. a rule code)
+    that `what` is skipped and how to install Pinocchio."""
+    if pinocchio_available():
+        return True
+    if what not in _NOTED:
+        _NOTED.add(what)
+        log.warning("%s skipped: Pinocchio is not installed; %s", what, PINOCCHIO_HINT)
+    return False
+
+
 def import_pinocchio(what: str = "this command") -> ModuleType:
     """Import and return `pinocchio`.
 
@@ -30,7 +48,7 @@ def import_pinocchio(what: str = "this command") -> ModuleType:
         KinematicsUnavailable: `pin` is not installed.
     """
     try:
-        import pinocchio
+        pinocchio = importlib.import_module("pinocchio")
     except ImportError as error:
         raise KinematicsUnavailable(what) from error
     return pinocchio

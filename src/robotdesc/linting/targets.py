@@ -19,11 +19,12 @@ import dataclasses
 import logging
 import os
 import re
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Iterable, Literal
+from typing import Any, Literal
 
-from robotdesc.config import Config, discover_config, find_config_file, load_config
+from robotdesc.config import Config, TargetSpec, discover_config, find_config_file, load_config
 from robotdesc.errors import InputError
 from robotdesc.expansion.packages import crawl_packages, enclosing_package
 from robotdesc.linting.matrix import Variant, matrix_variants, variant_label
@@ -209,7 +210,11 @@ def description_kind(path: str, packages: dict[str, str] | None = None) -> Kind:
 # --- helpers ------------------------------------------------------------------------------
 
 
-def is_srdf(path: str, root=None) -> bool:
+#: An lxml element (lxml ships no type information).
+XmlElement = Any
+
+
+def is_srdf(path: str, root: XmlElement | None = None) -> bool:
     """Whether a file is a MoveIt semantic description (SRDF, or its xacro): named
     `*.srdf[.xacro]`, or a `<robot>` whose top level holds SRDF elements and no link or joint."""
     if ".srdf" in os.path.basename(path).lower():
@@ -222,7 +227,7 @@ def is_srdf(path: str, root=None) -> bool:
             and not any(name in ("link", "joint") for name, is_xacro in names if not is_xacro))
 
 
-def _read_root(path: str):
+def _read_root(path: str) -> XmlElement | None:
     """The root element of an XML file, or None when it is not well-formed."""
     from lxml import etree
 
@@ -234,19 +239,19 @@ def _read_root(path: str):
         return None
 
 
-def _local_name(element) -> str:
+def _local_name(element: XmlElement) -> str:
     from lxml import etree
 
-    return etree.QName(element).localname
+    return str(etree.QName(element).localname)
 
 
-def _uses_xacro(root) -> bool:
+def _uses_xacro(root: XmlElement) -> bool:
     """Whether a document holds xacro elements (a declared namespace alone is not use)."""
     return any(_xacro_name(element)[1] for element in root.iter()
                if isinstance(element.tag, str))
 
 
-def _makes_something(path: str, root, packages: dict[str, str], seen: frozenset[str],
+def _makes_something(path: str, root: XmlElement, packages: dict[str, str], seen: frozenset[str],
                      depth: int = 0) -> bool:
     """Whether a xacro document, with what it includes, makes links, joints or macro calls.
 
@@ -340,12 +345,12 @@ class _Configs:
         return [self.explicit] if self.explicit is not None else list(self._loaded.values())
 
 
-def _specs_for(config: Config, file: str) -> list:
+def _specs_for(config: Config, file: str) -> list[TargetSpec]:
     real = os.path.realpath(file)
     return [spec for spec in config.targets if os.path.realpath(spec.file) == real]
 
 
-def _expand(file: str, config: Config, specs: list) -> list[LintTarget]:
+def _expand(file: str, config: Config, specs: list[TargetSpec]) -> list[LintTarget]:
     if not specs:
         return [LintTarget(file, config)]
     return [LintTarget(file, config, tuple(spec.args) + variant, variant)
@@ -363,7 +368,7 @@ def _listed_files(directory: str, files: list[str], configs: _Configs) -> list[s
                    if os.path.realpath(spec.file).startswith(root)})
 
 
-def _walk(root: str) -> Iterable[str]:
+def _walk(root: str) -> Iterator[str]:
     for directory, subdirs, files in os.walk(root):
         subdirs[:] = sorted(d for d in subdirs
                             if not d.startswith(".") and d not in _SKIPPED_DIRS)
@@ -372,7 +377,7 @@ def _walk(root: str) -> Iterable[str]:
                 yield os.path.abspath(os.path.join(directory, name))
 
 
-def _top_level(root) -> Iterable:
+def _top_level(root: XmlElement) -> Iterator[XmlElement]:
     """The root's element children, looking through xacro:if / xacro:unless blocks."""
     for element in root:
         if not isinstance(element.tag, str):
@@ -384,7 +389,7 @@ def _top_level(root) -> Iterable:
             yield element
 
 
-def _xacro_name(element) -> tuple[str, bool]:
+def _xacro_name(element: XmlElement) -> tuple[str, bool]:
     """(local name, whether it is a xacro element) of an element."""
     from lxml import etree
 

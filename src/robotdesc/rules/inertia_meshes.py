@@ -8,26 +8,70 @@ as `ctx.meshes`. numpy is imported inside the checks, so registering them costs 
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, cast
 
 from robotdesc.diagnostics import Finding, Severity
-from robotdesc.inertia.links import has_mass, link_element
-from robotdesc.model.elements import Link, Robot
+from robotdesc.inertia.links import has_mass, link_element, mass_of
+from robotdesc.mesh.context import LinkGeometry, MeshContext
+from robotdesc.mesh.properties import MassProperties, Vec3
+from robotdesc.model.elements import Inertial, Link, Robot
 from robotdesc.rules.registry import RuleContext, rule
+from robotdesc.source import Provenance
+
+if TYPE_CHECKING:
+    from robotdesc.inertia.compare import InertiaComparison
 
 FAMILY = "inertia"
 NEEDS = ("meshes",)
 
+#: An impossible axis: (axis name, declared spread sigma (m), largest possible (m)).
+Axis = tuple[str, float, float]
+#: Axis-aligned bounds (lower corner, upper corner), m, link frame.
+Bounds = tuple[Vec3, Vec3]
 
-def _measured(robot: Robot, ctx: RuleContext) -> Iterator[tuple[Link, object]]:
+
+def _meshes(ctx: RuleContext) -> MeshContext:
+    """The lint's mesh context (the driver hands one to every rule that needs meshes)."""
+    return cast(MeshContext, ctx.meshes)
+
+
+def _inertial(link: Link) -> Inertial:
+    """The link's `<inertial>`; callers have checked that it declares a mass."""
+    if link.inertial is None:
+        raise ValueError(f"link '{link.name}' has no <inertial>")
+    return link.inertial
+
+
+def _properties(geometry: LinkGeometry) -> MassProperties:
+    """The measured mass properties; callers have checked that the geometry is trusted."""
+    if geometry.properties is None:
+        raise ValueError(f"link '{geometry.link}': its geometry was not measured")
+    return geometry.properties
+
+
+def _bounds(geometry: LinkGeometry) -> Bounds:
+    """The measured bounds; callers have checked that the geometry is complete."""
+    if geometry.bounds is None:
+        raise ValueError(f"link '{geometry.link}': its geometry has no bounds")
+    return geometry.bounds
+
+
+def _tensor_where(link: Link) -> Provenance | None:
+    """Where the declared tensor is written (else its `<inertial>`)."""
+    inertial = _inertial(link)
+    return (inertial.inertia.where if inertial.inertia else None) or inertial.where
+
+
+def _measured(robot: Robot, ctx: RuleContext) -> Iterator[tuple[Link, LinkGeometry]]:
     """Links with a positive declared mass whose geometry could be measured exactly."""
     if ctx.meshes is None:
         return
     for link in robot.links:
         if not has_mass(link):
             continue
-        geometry = ctx.meshes.link_geometry(link)
+        geometry = _meshes(ctx).link_geometry(link)
         if geometry.trusted:
             yield link, geometry
 
@@ -36,16 +80,17 @@ def _fix(robot: Robot, ctx: RuleContext, link: Link) -> str | None:
     """The suggested `<inertial>` block (meshes in millimetres scaled first)."""
     from robotdesc.inertia.suggest import suggest_for_link
 
-    found = suggest_for_link(robot, ctx.meshes, link)
+    found = suggest_for_link(robot, _meshes(ctx), link)
     return found.block if found is not None else None
 
 
-def _both_sources(ctx: RuleContext, link: Link) -> list:
+def _both_sources(ctx: RuleContext, link: Link) -> list[LinkGeometry]:
     """The link's collision and visual geometry (each once; a link with only one kind
     gives it once), measured completely, or [] when a part could not be measured."""
-    found, seen = [], set()
+    found: list[LinkGeometry] = []
+    seen: set[str] = set()
     for source in ("collision", "visual"):
-        geometry = ctx.meshes.link_geometry(link, source)
+        geometry = _meshes(ctx).link_geometry(link, source)
         if not geometry.source or geometry.source in seen:
             continue
         seen.add(geometry.source)
@@ -55,13 +100,13 @@ def _both_sources(ctx: RuleContext, link: Link) -> list:
     return found
 
 
-def _union_bounds(geometries) -> tuple | None:
+def _union_bounds(geometries: Sequence[LinkGeometry]) -> Bounds | None:
     """The axis-aligned box (m, link frame) around every geometry given, None for none."""
     if not geometries:
         return None
-    low = tuple(min(g.bounds[0][i] for g in geometries) for i in range(3))
-    high = tuple(max(g.bounds[1][i] for g in geometries) for i in range(3))
-    return low, high
+    low = [min(_bounds(g)[0][i] for g in geometries) for i in range(3)]
+    high = [max(_bounds(g)[1][i] for g in geometries) for i in range(3)]
+    return (low[0], low[1], low[2]), (high[0], high[1], high[2])
 
 
 def _spread(link: Link) -> tuple[float, float, float]:
@@ -69,22 +114,23 @@ def _spread(link: Link) -> tuple[float, float, float]:
     (m^2): Sigma = (trace(I) / 2 - I) / m, from the declared tensor in link axes."""
     from robotdesc.inertia.compare import declared_tensor
 
-    tensor = declared_tensor(link.inertial)
+    tensor = declared_tensor(_inertial(link))
     half_trace = (tensor[0][0] + tensor[1][1] + tensor[2][2]) / 2.0
-    mass = link.inertial.mass
-    return tuple((half_trace - tensor[i][i]) / mass for i in range(3))  # type: ignore[return-value]
+    mass = mass_of(link)
+    return ((half_trace - tensor[0][0]) / mass, (half_trace - tensor[1][1]) / mass,
+            (half_trace - tensor[2][2]) / mass)
 
 
 #: Relative slack on the certain bound: values written with few digits, rounded meshes.
 _BOUND_SLACK = 0.02
 
 
-def _impossible_axes(link: Link, bounds) -> list[tuple[str, float, float]]:
+def _impossible_axes(link: Link, bounds: Bounds) -> list[Axis]:
     """(axis, declared spread sigma (m), largest possible (m)) for every link axis along which
     the declared tensor spreads the mass wider than any distribution inside `bounds` can:
     the variance of a quantity confined to an interval of width w is at most (w/2)^2."""
     low, high = bounds
-    out = []
+    out: list[Axis] = []
     for axis, second, lo, hi in zip("xyz", _spread(link), low, high):
         limit = ((hi - lo) / 2.0) ** 2
         if second > limit * (1.0 + _BOUND_SLACK) ** 2 + 1e-12:
@@ -92,7 +138,7 @@ def _impossible_axes(link: Link, bounds) -> list[tuple[str, float, float]]:
     return out
 
 
-def _certain_violation(ctx: RuleContext, link: Link) -> tuple[list, tuple] | None:
+def _certain_violation(ctx: RuleContext, link: Link) -> tuple[list[Axis], Bounds] | None:
     """(the impossible axes, the geometry's bounds) when I204 or I206 applies to the link.
 
     Links of a gram or less carry token values, and geometry under 5 mm across is a stand-in
@@ -213,7 +259,7 @@ def placeholder_inertia_impossible(robot: Robot, ctx: RuleContext) -> Iterator[F
                                       "typed-in tensor diag(I, I, I): ")
 
 
-def _impossible_finding(robot: Robot, ctx: RuleContext, link: Link, axes: list,
+def _impossible_finding(robot: Robot, ctx: RuleContext, link: Link, axes: list[Axis],
                         kind: str) -> Finding:
     """I204's and I206's message: each impossible axis, its declared spread and the bound."""
     detail = "; ".join(f"along {axis} the declared tensor spreads the mass by "
@@ -223,10 +269,9 @@ def _impossible_finding(robot: Robot, ctx: RuleContext, link: Link, axes: list,
     cause = _unit_cause(ctx, link)
     return Finding(f"link '{link.name}': {kind}no mass distribution inside its visual and "
                    f"collision geometry has the declared inertia at "
-                   f"{link.inertial.mass:g} kg: {detail}"
+                   f"{mass_of(link):g} kg: {detail}"
                    + (f"; likely cause: {cause}" if cause else ""),
-                   link.inertial.inertia.where or link.inertial.where, link_element(link),
-                   _fix(robot, ctx, link))
+                   _tensor_where(link), link_element(link), _fix(robot, ctx, link))
 
 
 def _unit_cause(ctx: RuleContext, link: Link) -> str | None:
@@ -234,10 +279,10 @@ def _unit_cause(ctx: RuleContext, link: Link) -> str | None:
     convention), if the numbers show it."""
     from robotdesc.inertia.compare import compare_inertia
 
-    geometry = ctx.meshes.link_geometry(link)
+    geometry = _meshes(ctx).link_geometry(link)
     if not geometry.trusted:
         return None
-    return compare_inertia(link.inertial, geometry.properties,
+    return compare_inertia(_inertial(link), _properties(geometry),
                            DeviationOptions.tolerance).cause
 
 
@@ -253,22 +298,26 @@ class InertiaMismatchOptions:
     factor: float = 10.0
 
 
-def _comparisons(robot: Robot, ctx: RuleContext, tolerance: float) -> dict:
+#: Link name -> (link, its geometry, the comparison of its declared tensor with it).
+Comparisons = dict[str, tuple[Link, LinkGeometry, "InertiaComparison"]]
+
+
+def _comparisons(robot: Robot, ctx: RuleContext, tolerance: float) -> Comparisons:
     """Link name -> (link, geometry, comparison) for links whose geometry can be trusted,
     leaving out those whose tensor is impossible for their geometry (I204's)."""
     from robotdesc.inertia.compare import compare_inertia
 
-    results = {}
+    results: Comparisons = {}
     for link, geometry in _measured(robot, ctx):
-        if link.inertial.inertia is None or _certain_violation(ctx, link) is not None \
+        if _inertial(link).inertia is None or _certain_violation(ctx, link) is not None \
                 or _placeholder(geometry):
             continue
-        results[link.name] = (link, geometry,
-                              compare_inertia(link.inertial, geometry.properties, tolerance))
+        results[link.name] = (link, geometry, compare_inertia(_inertial(link),
+                                                              _properties(geometry), tolerance))
     return results
 
 
-def _factor(comparison) -> float:
+def _factor(comparison: InertiaComparison) -> float:
     """The largest ratio, either way, between a declared and a derived principal moment."""
     worst = 1.0
     for declared, derived in zip(comparison.declared_moments, comparison.derived_moments):
@@ -283,7 +332,7 @@ def _factor(comparison) -> float:
 EXACT_FIT = 0.1
 
 
-def _fitting_cause(comparison) -> str | None:
+def _fitting_cause(comparison: InertiaComparison) -> str | None:
     """The comparison's cause, dropped when it is a products-sign swap or a rotation that
     does not fit within `EXACT_FIT` (those then count as plain deviations)."""
     from robotdesc.inertia.compare import sign_flip
@@ -306,12 +355,13 @@ PLACEHOLDER_MASS = 1e-3
 
 
 def _mismatch_findings(robot: Robot, ctx: RuleContext, tolerance: float,
-                       keep, min_mass: float = 0.0) -> Iterator[Finding]:
+                       keep: Callable[[InertiaComparison, str], bool],
+                       min_mass: float = 0.0) -> Iterator[Finding]:
     from robotdesc.inertia.compare import mirror_partner
 
     results = _comparisons(robot, ctx, tolerance)
     for name, (link, geometry, comparison) in results.items():
-        if not comparison.mismatch(tolerance) or link.inertial.mass <= min_mass:
+        if not comparison.mismatch(tolerance) or mass_of(link) <= min_mass:
             continue
         cause = _fitting_cause(comparison)
         partner = mirror_partner(name, set(results))
@@ -324,11 +374,10 @@ def _mismatch_findings(robot: Robot, ctx: RuleContext, tolerance: float,
         yield Finding(
             f"link '{name}': declared principal moments {_fmt(comparison.declared_moments)} "
             f"kg*m^2 differ from its {geometry.source} geometry's "
-            f"{_fmt(comparison.derived_moments)} at {link.inertial.mass:g} kg by up to "
+            f"{_fmt(comparison.derived_moments)} at {mass_of(link):g} kg by up to "
             f"{_percent(worst)} (tensor {_percent(comparison.tensor_error)})"
             + (f"; likely cause: {cause}" if cause else ""),
-            link.inertial.inertia.where or link.inertial.where, link_element(link),
-            _fix(robot, ctx, link))
+            _tensor_where(link), link_element(link), _fix(robot, ctx, link))
 
 
 @rule("I201", "inertia-differs-from-geometry", family=FAMILY, severity=Severity.WARNING,
@@ -382,11 +431,11 @@ def inertia_differs_from_geometry(robot: Robot, ctx: RuleContext) -> Iterator[Fi
     </link>
     ```
     """
-    factor = ctx.options.factor if ctx.options else InertiaMismatchOptions.factor
+    factor: float = ctx.options.factor if ctx.options else InertiaMismatchOptions.factor
     tolerance = DeviationOptions.tolerance
     links = {link.name: link for link in robot.links}
 
-    def keep(comparison, name: str) -> bool:
+    def keep(comparison: InertiaComparison, name: str) -> bool:
         if _singular(comparison) or (is_isotropic(links[name]) and max(
                 comparison.declared_moments) > max(comparison.derived_moments)):
             return False  # I103's; or typed in larger, as to steady a simulation (I206)
@@ -398,13 +447,13 @@ def inertia_differs_from_geometry(robot: Robot, ctx: RuleContext) -> Iterator[Fi
     yield from _mismatch_findings(robot, ctx, tolerance, keep, min_mass=PLACEHOLDER_MASS)
 
 
-def _singular(comparison) -> bool:
+def _singular(comparison: InertiaComparison) -> bool:
     """A declared point mass, rod or plate (a principal moment zero, to rounding): I103
     judges those."""
     return min(comparison.declared_moments) <= 1e-9 * max(comparison.derived_moments)
 
 
-def _largest_factor(comparison) -> float:
+def _largest_factor(comparison: InertiaComparison) -> float:
     """The ratio, either way, of the declared and derived largest principal moments: the one
     that dominates how the link turns (a rod's tiny moment about its own axis does not)."""
     declared, derived = max(comparison.declared_moments), max(comparison.derived_moments)
@@ -423,13 +472,13 @@ def _off_from_every_source(ctx: RuleContext, link: Link, factor: float,
     for geometry in _both_sources(ctx, link):
         if not geometry.trusted:
             continue
-        other = compare_inertia(link.inertial, geometry.properties, tolerance)
+        other = compare_inertia(_inertial(link), _properties(geometry), tolerance)
         if _largest_factor(other) < factor:
             return False
     return True
 
 
-def _has_cause(comparison) -> bool:
+def _has_cause(comparison: InertiaComparison) -> bool:
     """The comparison names a cause (set by `_mismatch_findings` for mirror links too)."""
     return comparison.cause is not None
 
@@ -480,7 +529,7 @@ def inertia_deviates_from_uniform_density(robot: Robot, ctx: RuleContext) -> Ite
     </link>
     ```
     """
-    tolerance = ctx.options.tolerance if ctx.options else DeviationOptions.tolerance
+    tolerance: float = ctx.options.tolerance if ctx.options else DeviationOptions.tolerance
     factor = InertiaMismatchOptions.factor
     yield from _mismatch_findings(
         robot, ctx, tolerance,
@@ -537,11 +586,11 @@ def center_of_mass_outside_geometry(robot: Robot, ctx: RuleContext) -> Iterator[
     </link>
     ```
     """
-    margin = ctx.options.margin if ctx.options else CenterOfMassOptions.margin
+    margin: float = ctx.options.margin if ctx.options else CenterOfMassOptions.margin
     if ctx.meshes is None:
         return
     for link in robot.links:
-        if not has_mass(link) or link.inertial.mass <= PLACEHOLDER_MASS:
+        if not has_mass(link) or mass_of(link) <= PLACEHOLDER_MASS:
             continue
         geometries = _both_sources(ctx, link)
         bounds = _union_bounds(geometries)
@@ -549,7 +598,8 @@ def center_of_mass_outside_geometry(robot: Robot, ctx: RuleContext) -> Iterator[
             continue
         low, high = bounds
         kinds = " and ".join(g.source for g in geometries)
-        com = link.inertial.origin.xyz
+        inertial = _inertial(link)
+        com = inertial.origin.xyz
         outside = []
         for axis, value, lo, hi in zip("xyz", com, low, high):
             slack = margin * (hi - lo) + 1e-4
@@ -563,7 +613,7 @@ def center_of_mass_outside_geometry(robot: Robot, ctx: RuleContext) -> Iterator[
             yield Finding(f"link '{link.name}': declared centre of mass {_fmt(com)} m lies "
                           f"outside the bounds of its {kinds} geometry together: "
                           f"{'; '.join(outside)}{hint}",
-                          link.inertial.origin.where or link.inertial.where, link_element(link),
+                          inertial.origin.where or inertial.where, link_element(link),
                           _fix(robot, ctx, link))
 
 
@@ -630,20 +680,21 @@ def implausible_density(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     </link>
     ```
     """
-    options = ctx.options or DensityOptions()
+    options: DensityOptions = ctx.options or DensityOptions()
     if ctx.meshes is None:
         return
     for link in robot.links:
-        if not has_mass(link) or link.inertial.mass <= PLACEHOLDER_MASS:
+        mass = mass_of(link)
+        if not has_mass(link) or mass <= PLACEHOLDER_MASS:
             continue
-        measured = []
+        measured: list[LinkGeometry] = []
         for source in ("collision", "visual"):
-            geometry = ctx.meshes.link_geometry(link, source)
+            geometry = _meshes(ctx).link_geometry(link, source)
             if geometry.trusted and geometry.source not in {g.source for g in measured}:
                 measured.append(geometry)
         if not measured or any(_placeholder(g) for g in measured):
             continue
-        densities = [link.inertial.mass / g.properties.volume for g in measured]
+        densities = [mass / _properties(g).volume for g in measured]
         # a relative slack of 1e-6: 1 kg in 0.02 m^3 is 50 kg/m^3, not 49.99999
         low = options.min_density / options.factor * (1 - 1e-6)
         high = options.max_density * options.factor * (1 + 1e-6)
@@ -654,13 +705,13 @@ def implausible_density(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
         cause = None if small else _density_cause(density)
         also = (f" (its {measured[1].source} geometry gives {densities[1]:.4g} kg/m^3)"
                 if len(measured) > 1 else "")
-        yield Finding(f"link '{link.name}': {link.inertial.mass:g} kg in "
-                      f"{geometry.properties.volume:.4g} m^3 of {geometry.source} geometry is "
+        yield Finding(f"link '{link.name}': {mass:g} kg in "
+                      f"{_properties(geometry).volume:.4g} m^3 of {geometry.source} geometry is "
                       f"{density:.4g} kg/m^3{also}, "
                       + (f"more than {options.factor:g}x " if options.factor > 1 else "")
                       + f"outside [{options.min_density:g}, {options.max_density:g}]"
                       + (f"; likely cause: {cause}" if cause else ""),
-                      link.inertial.where, link_element(link))
+                      _inertial(link).where, link_element(link))
 
 
 #: Geometry whose largest extent is below this (m) is a placeholder (a 1 mm cube).
@@ -672,12 +723,12 @@ CAUSE_MIN_SIZE = 0.02
 TYPICAL_DENSITY = (100.0, 20_000.0)
 
 
-def _extent(geometry) -> float:
-    low, high = geometry.bounds
+def _extent(geometry: LinkGeometry) -> float:
+    low, high = _bounds(geometry)
     return max(h - lo for lo, h in zip(low, high))
 
 
-def _placeholder(geometry) -> bool:
+def _placeholder(geometry: LinkGeometry) -> bool:
     return _extent(geometry) < PLACEHOLDER_SIZE
 
 
@@ -685,18 +736,18 @@ def _density_cause(density: float) -> str | None:
     """The unit slip whose factor lands the density among typical materials, if exactly one
     does."""
     causes = ((1e-3, "the mass looks like grams (1e3 times too large)"),
-              (1e3, "the mass looks 1000 times too small (kg written as tonnes, or divided "
-                    "by 1000 twice)"),
+              (1e3, ("the mass looks 1000 times too small (kg written as tonnes, or divided "
+                     "by 1000 twice)")),
               (1e9, "the geometry looks like millimetres (volume 1e9 times too large)"),
               (1e6, "the geometry looks like centimetres (volume 1e6 times too large)"),
-              (1e-9, "the geometry looks 1000 times too small (a scale of 0.001 on a mesh "
-                     "already in metres?)"))
+              (1e-9, ("the geometry looks 1000 times too small (a scale of 0.001 on a mesh "
+                      "already in metres?)")))
     low, high = TYPICAL_DENSITY
     fitting = [cause for factor, cause in causes if low <= density * factor <= high]
     return fitting[0] if len(fitting) == 1 else None
 
 
-def _fmt(values) -> str:
+def _fmt(values: Sequence[float]) -> str:
     return "(" + ", ".join(f"{v:.4g}" for v in values) + ")"
 
 
