@@ -34,7 +34,9 @@ class ReportFormat:
 
     def renderer(self) -> Callable[..., str]:
         """The rendering function (its module imported now)."""
-        return getattr(importlib.import_module(self.module), self.function)
+        render: Callable[..., str] = getattr(importlib.import_module(self.module),
+                                             self.function)
+        return render
 
 
 #: Every format, in the order `--help` lists them ("text" first: the default).

@@ -10,7 +10,8 @@ message on extra lines (escaped LF), and a plain summary line ends the output.
 from __future__ import annotations
 
 import os
-from typing import Any, Sequence
+from collections.abc import Sequence
+from typing import Any
 
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.linting.matrix import variant_label

@@ -12,7 +12,8 @@ import hashlib
 import json
 import os
 from collections import Counter
-from typing import Any, Sequence
+from collections.abc import Sequence
+from typing import Any
 
 from robotdesc.diagnostics import Severity
 from robotdesc.linting.targets import target_name
@@ -26,7 +27,7 @@ def render_gitlab(results: Sequence[Any], failures: Sequence[Any] = (), *,
     """The Code Quality report as JSON text ending with a newline."""
     root = os.path.abspath(cwd or os.getcwd())
     issues: list[dict[str, Any]] = []
-    seen: Counter = Counter()  # identical findings get distinct fingerprints
+    seen: Counter[tuple[str, ...]] = Counter()  # identical findings get distinct fingerprints
     for result in results:
         target = target_name(result.target, getattr(result, "variant", ()), root)
         for d in result.diagnostics:
@@ -47,13 +48,13 @@ def render_gitlab(results: Sequence[Any], failures: Sequence[Any] = (), *,
     return json.dumps(issues, indent=2, ensure_ascii=False) + "\n"
 
 
-def _occurrence(seen: Counter, *identity: str) -> tuple[str, ...]:
+def _occurrence(seen: Counter[tuple[str, ...]], *identity: str) -> tuple[str, ...]:
     seen[identity] += 1
     return (*identity, str(seen[identity]))
 
 
 def _issue(description: str, check: str, severity: str, path: str, line: int,
-           identity: tuple) -> dict[str, Any]:
+           identity: tuple[str, ...]) -> dict[str, Any]:
     fingerprint = hashlib.sha256("\0".join(identity).encode("utf-8")).hexdigest()[:32]
     return {"description": description, "check_name": check, "fingerprint": fingerprint,
             "severity": severity, "location": {"path": path, "lines": {"begin": line or 1}}}

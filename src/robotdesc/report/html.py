@@ -10,7 +10,7 @@ import html
 import math
 import os
 from collections.abc import Iterable, Sequence
-from typing import Any
+from typing import Any, TypeVar
 
 from robotdesc._version import __version__
 from robotdesc.report.html_data import ReportData
@@ -240,21 +240,25 @@ def _plots_section(data: ReportData) -> str:
     return "\n".join(parts) or '<p class="note">Nothing to plot.</p>'
 
 
-def _merge_alike(rows: list[tuple]) -> list[tuple]:
+_First = TypeVar("_First")
+_Second = TypeVar("_Second")
+
+
+def _merge_alike(rows: list[tuple[str, _First, _Second]]) -> list[tuple[str, _First, _Second]]:
     """Rows whose values (all but the name) agree to 4 significant digits become one row,
     named after the first with "(+N alike)" (a robot's 100 identical wheels are one line)."""
-    def key(row: tuple) -> tuple:
+    def key(row: tuple[str, _First, _Second]) -> tuple[object, ...]:
         return tuple(tuple(float(f"{v:.4g}") for v in value) if isinstance(value, tuple)
                      else value for value in row[1:])
 
-    groups: dict[tuple, list[tuple]] = {}
+    groups: dict[tuple[object, ...], list[tuple[str, _First, _Second]]] = {}
     for row in rows:
         groups.setdefault(key(row), []).append(row)
-    merged = []
+    merged: list[tuple[str, _First, _Second]] = []
     for members in groups.values():
         first = members[0]
         name = first[0] + (f" (+{len(members) - 1} alike)" if len(members) > 1 else "")
-        merged.append((name, *first[1:]))
+        merged.append((name, first[1], first[2]))
     return merged
 
 

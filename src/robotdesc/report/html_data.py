@@ -76,7 +76,7 @@ def collect_report(result: Any, *, package_paths: Sequence[str] = (),
         notes.append(f"{len(scene.problems)} geometries could not be shown in the 3D view")
     collision = None
     if collision_method:
-        from robotdesc.collision import generate_collision
+        from robotdesc.collision.generate import generate_collision
 
         collision = generate_collision(robot, collision_method, options=collision_options,
                                        package_paths=tuple(package_paths),

@@ -10,6 +10,11 @@ from __future__ import annotations
 import io
 import re
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
 
 Vec3 = tuple[float, float, float]
 
@@ -28,7 +33,7 @@ def plots_available() -> bool:
     return True
 
 
-def _figure(rows: int):
+def _figure(rows: int) -> tuple[Figure, Axes]:
     """A Figure without pyplot (no global backend or state is touched)."""
     from matplotlib.figure import Figure
 
@@ -36,7 +41,7 @@ def _figure(rows: int):
     return figure, figure.subplots()
 
 
-def _svg(figure, salt: str) -> str:
+def _svg(figure: Figure, salt: str) -> str:
     import matplotlib
 
     buffer = io.StringIO()
@@ -109,13 +114,13 @@ def faces_plot(rows: Sequence[tuple[str, int, int]], total: int | None = None) -
 _ALIKE = re.compile(r" \(\+(\d+) alike\)$")
 
 
-def links_drawn(rows: Sequence[tuple]) -> int:
+def links_drawn(rows: Sequence[tuple[str, object, object]]) -> int:
     """The links the drawn rows stand for (a row "name (+N alike)" stands for N + 1)."""
     return sum(1 + int(found.group(1)) if (found := _ALIKE.search(row[0])) else 1
                for row in rows)
 
 
-def _title(what: str, shown: Sequence[tuple], total: int | None, kind: str) -> str:
+def _title(what: str, shown: Sequence[tuple[str, object, object]], total: int | None, kind: str) -> str:
     """"Principal moments of 7 links" or "... of 7 of the 10 links compared": the count
     is what the plot draws."""
     drawn = links_drawn(shown)
@@ -125,7 +130,7 @@ def _title(what: str, shown: Sequence[tuple], total: int | None, kind: str) -> s
     return f"{what}: {drawn} of the {total} links {kind}{rows}"
 
 
-def _legend_above(axes) -> None:
+def _legend_above(axes: Axes) -> None:
     """The legend in one line above the plot, where it covers no row."""
     axes.legend(fontsize=8, loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=2,
                 frameon=False, borderaxespad=0.2)

@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import json
 import os
-from typing import Any, Sequence
+from collections.abc import Sequence
+from typing import Any
 
 from robotdesc._version import __version__
 from robotdesc.diagnostics import Diagnostic, Severity
@@ -128,12 +129,14 @@ def report_dict(results: Sequence[Any], failures: Sequence[Any] = ()) -> dict[st
     diagnostics = [d for result in results for d in result.diagnostics]
     variants = [dict(getattr(result, "variant", ())) for result in results
                 for _ in result.diagnostics]
-    summary = {"files_checked": len(results), "files_not_checked": len(failures)}
+    summary: dict[str, object] = {"files_checked": len(results),
+                                  "files_not_checked": len(failures)}
     summary.update({str(level): sum(d.severity == level for d in diagnostics)
                     for level in sorted(Severity, reverse=True)})
-    summary["suppressed"] = sum(getattr(result, "suppressed", 0) for result in results)
+    suppressed: int = sum(getattr(result, "suppressed", 0) for result in results)
+    summary["suppressed"] = suppressed
     summary["suppressed_by"] = {
-        "inline": summary["suppressed"],
+        "inline": suppressed,
         "config": sum(getattr(result, "suppressed_by_config", 0) for result in results),
         "baseline": sum(getattr(result, "suppressed_by_baseline", 0) for result in results)}
     summary["files_read"] = len(set().union(*(getattr(result, "files_read", frozenset())

@@ -10,7 +10,8 @@ one errored test case.
 from __future__ import annotations
 
 import os
-from typing import Any, Sequence
+from collections.abc import Sequence
+from typing import Any
 
 from lxml import etree
 
@@ -41,7 +42,7 @@ def render_junit(results: Sequence[Any], failures: Sequence[Any] = (), *,
     for key in ("tests", "failures", "errors", "skipped"):
         suites.set(key, str(sum(int(s.get(key)) for s in suites)))
     suites.set("time", "0")
-    text = etree.tostring(suites, pretty_print=True, encoding="unicode")
+    text: str = etree.tostring(suites, pretty_print=True, encoding="unicode")
     return '<?xml version="1.0" encoding="UTF-8"?>\n' + text
 
 
@@ -120,8 +121,8 @@ def _case_name(code: str, names: dict[str, str]) -> str:
 def _finding_text(diagnostic: Diagnostic, root: str) -> str:
     span = diagnostic.where.span if diagnostic.where else None
     stack = diagnostic.where.macro_stack if diagnostic.where else ()
-    lines = [f"{_location(span, diagnostic.target, root)}: {diagnostic.code} "
-             f"[{diagnostic.severity}] {diagnostic.message}"]
+    lines = [(f"{_location(span, diagnostic.target, root)}: {diagnostic.code} "
+              f"[{diagnostic.severity}] {diagnostic.message}")]
     lines += [f"  in macro called from {_location(site, site.path, root)}" for site in stack]
     lines += [f"  value passed at {_location(site, site.path, root)} ({', '.join(names)})"
               for site, names in passed_sites(diagnostic.where.passed if diagnostic.where else ())]

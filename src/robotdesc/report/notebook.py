@@ -28,7 +28,7 @@ def html_of(value: Any) -> str | None:
 def register() -> None:
     """Register the renderers with the running IPython shell (nothing without one)."""
     ipython_module = sys.modules.get("IPython")
-    shell = ipython_module.get_ipython() if ipython_module else None  # type: ignore[attr-defined]
+    shell = ipython_module.get_ipython() if ipython_module else None
     if shell is None:
         return
     formatter = shell.display_formatter.formatters["text/html"]

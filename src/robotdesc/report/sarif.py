@@ -14,8 +14,9 @@ import hashlib
 import json
 import os
 import urllib.parse
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, Sequence
+from typing import Any
 
 from robotdesc._version import __version__
 from robotdesc.diagnostics import Diagnostic, Severity
@@ -107,7 +108,7 @@ def artifact_location(path: str, root: str) -> dict[str, str]:
 
 def fingerprint(diagnostic: Diagnostic, target: str) -> str:
     """A line-free identity of a finding (target, code, element, message)."""
-    material = "\0".join((target, diagnostic.code, diagnostic.element, diagnostic.message))
+    material = f"{target}\0{diagnostic.code}\0{diagnostic.element}\0{diagnostic.message}"
     return hashlib.sha256(material.encode("utf-8")).hexdigest()[:32]
 
 

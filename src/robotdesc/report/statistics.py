@@ -10,10 +10,14 @@ from __future__ import annotations
 
 import json
 from collections import Counter
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, Sequence
+from typing import TYPE_CHECKING, Any
 
 from robotdesc.report.table import render_table
+
+if TYPE_CHECKING:
+    from robotdesc.diagnostics import Severity
 
 
 @dataclass(frozen=True)
@@ -35,8 +39,9 @@ class CodeCount:
 
 def code_counts(results: Sequence[Any]) -> list[CodeCount]:
     """Findings counted per rule code, most first, then by code."""
-    counts: Counter = Counter()
-    names, worst = {}, {}
+    counts: Counter[str] = Counter()
+    names: dict[str, str] = {}
+    worst: dict[str, Severity] = {}
     for result in results:
         for d in result.diagnostics:
             counts[d.code] += 1

@@ -5,7 +5,7 @@ shortened in the middle ("left_main_…_link"), so that no column is hidden."""
 from __future__ import annotations
 
 import textwrap
-from typing import Sequence
+from collections.abc import Sequence
 
 #: Columns a terminal table may use.
 WIDTH = 100

@@ -16,12 +16,16 @@ from __future__ import annotations
 
 import os
 import re
-from typing import Any, Callable, Iterable, Sequence, TextIO
+from collections.abc import Callable, Iterable, Sequence
+from typing import TYPE_CHECKING, Any, TextIO
 
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.errors import InputError
 from robotdesc.linting.matrix import variant_label
 from robotdesc.source import Span, passed_sites
+
+if TYPE_CHECKING:
+    from robotdesc.linting.result import LintFailure, LintResult
 
 Segment = tuple[str, str]  # (text, rich style; "" for none)
 Line = list[Segment]
@@ -61,8 +65,8 @@ def display_path(path: str, cwd: str | None = None) -> str:
     return absolute if relative.startswith("..") else relative
 
 
-def render_lines(results: Sequence, failures: Sequence = (), *, cwd: str | None = None,
-                 show_source: bool = True) -> list[Line]:
+def render_lines(results: Sequence[LintResult], failures: Sequence[LintFailure] = (), *,
+                 cwd: str | None = None, show_source: bool = True) -> list[Line]:
     """The report as styled lines.
 
     Args:
@@ -106,20 +110,21 @@ def variant_text(result: Any, show: Callable[[str], str] = display_path) -> str:
     return f"{show(result.target)} {shown or '(default arguments)'}"
 
 
-def suppressed_counts(results: Sequence) -> dict[str, int]:
+def suppressed_counts(results: Sequence[LintResult]) -> dict[str, int]:
     """Findings hidden, by mechanism: inline comments, config ignores, baseline."""
     return {"inline": sum(getattr(r, "suppressed", 0) for r in results),
             "config": sum(getattr(r, "suppressed_by_config", 0) for r in results),
             "baseline": sum(getattr(r, "suppressed_by_baseline", 0) for r in results)}
 
 
-def files_read(results: Sequence) -> int:
+def files_read(results: Sequence[LintResult]) -> int:
     """The number of distinct files the lints read (descriptions, includes, configs,
     package.xml, meshes)."""
     return len(set().union(*(getattr(r, "files_read", frozenset()) for r in results)))
 
 
-def checked_lines(results: Sequence, show: Callable[[str], str] = display_path) -> list[Line]:
+def checked_lines(results: Sequence[LintResult],
+                  show: Callable[[str], str] = display_path) -> list[Line]:
     """What was checked, under the summary: the variants linted (when a file was linted
     with arguments or more than once), the findings suppressed and the files read."""
     if not results:
@@ -141,15 +146,16 @@ def checked_lines(results: Sequence, show: Callable[[str], str] = display_path) 
     return lines
 
 
-def render_text(results: Sequence, failures: Sequence = (), *, cwd: str | None = None,
-                show_source: bool = True) -> str:
+def render_text(results: Sequence[LintResult], failures: Sequence[LintFailure] = (), *,
+                cwd: str | None = None, show_source: bool = True) -> str:
     """The report as plain text (no colour), ending with a newline."""
     return "".join("".join(text for text, _ in line) + "\n"
                    for line in render_lines(results, failures, cwd=cwd,
                                             show_source=show_source))
 
 
-def write_text(stream: TextIO, results: Sequence, failures: Sequence = (), *,
+def write_text(stream: TextIO, results: Sequence[LintResult],
+               failures: Sequence[LintFailure] = (), *,
                colour: bool = False, cwd: str | None = None) -> None:
     """Write the report to `stream`, coloured with rich when `colour` is set."""
     lines = render_lines(results, failures, cwd=cwd)
@@ -162,18 +168,21 @@ def write_text(stream: TextIO, results: Sequence, failures: Sequence = (), *,
     console = Console(file=stream, force_terminal=True, highlight=False, soft_wrap=True,
                       emoji=False, markup=False)
     for line in lines:
-        console.print(Text.assemble(*((text, style or None) for text, style in line)))
+        rendered = Text()
+        for text, style in line:
+            rendered.append(text, style or None)
+        console.print(rendered)
 
 
 def render_failure(failure: Any, *, cwd: str | None = None, show_source: bool = True) -> str:
     """A file that could not be checked: `path:line:col: error: message`, the source line
     and the macro call chain (plain text, ending with a newline)."""
-    show = lambda path: display_path(path, cwd)  # noqa: E731
+    show = lambda path: display_path(path, cwd)
     lines = _failure_lines(failure.error, failure.target, show, SourceCache(), show_source)
     return "".join("".join(text for text, _ in line) + "\n" for line in lines)
 
 
-def summary_line(results: Sequence, failures: Sequence = ()) -> Line:
+def summary_line(results: Sequence[LintResult], failures: Sequence[LintFailure] = ()) -> Line:
     """"Found 3 errors, 1 warning in 2 files." / "All checks passed (2 files)."."""
     totals = {level: 0 for level in sorted(Severity, reverse=True)}
     files = set()
@@ -247,7 +256,7 @@ def _context_lines(span: Span | None, stack: Iterable[Span], show: Callable[[str
     source = cache.line(span.path, span.line) if (span and span.line and show_source) else None
     width = len(str(span.line)) if span and span.line else 1
     gutter = " " * width
-    if source is not None:
+    if source is not None and span is not None:
         source, col = _clip_source(source.rstrip(), span.col)
         start, length = _underline(source, col)
         lines.append([(f"{gutter} |", "blue")])

@@ -87,6 +87,8 @@ def build_server(session: Session | None = None) -> LanguageServer:
 
 
 def _range(diagnostic: Diagnostic) -> types.Range:
+    if diagnostic.where is None:  # not published: findings without a location have no file
+        return types.Range(types.Position(0, 0), types.Position(1, 0))
     span = diagnostic.where.span
     line = max(span.line - 1, 0)
     column = max(span.col - 1, 0)

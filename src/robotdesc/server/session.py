@@ -7,7 +7,7 @@ import logging
 import os
 from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from robotdesc.diagnostics import Diagnostic
 from robotdesc.errors import InputError
@@ -16,12 +16,19 @@ from robotdesc.expansion.packages import enclosing_package
 from robotdesc.linting.driver import lint_file
 from robotdesc.linting.fix.engine import FIXED, FixOutcome, plan_fixes
 from robotdesc.linting.fix.run import MeshCase
+from robotdesc.linting.matrix import Variant
 from robotdesc.linting.targets import LintTarget, discover_targets
 from robotdesc.rules.fixes import Applicability
+
+if TYPE_CHECKING:
+    from robotdesc.linting.result import LintResult
 
 log = logging.getLogger(__name__)
 
 SUFFIXES = (".urdf", ".xacro")
+
+#: A linted description: (target path, matrix variant).
+TargetKey = tuple[str, Variant]
 
 
 @dataclass(frozen=True)
@@ -49,9 +56,9 @@ class Session:
 
     def __init__(self, expand_options: Any = None) -> None:
         self.expand_options = expand_options
-        self.results: dict[tuple[str, tuple], Any] = {}  # (target, variant) -> LintResult
-        self.targets: dict[tuple[str, tuple], LintTarget] = {}
-        self.failures: dict[tuple[str, tuple], InputError] = {}
+        self.results: dict[TargetKey, LintResult] = {}
+        self.targets: dict[TargetKey, LintTarget] = {}
+        self.failures: dict[TargetKey, InputError] = {}
 
     # -- linting ------------------------------------------------------------------------
 
@@ -98,7 +105,8 @@ class Session:
     def findings(self, path: str) -> list[Diagnostic]:
         """The findings of every linted description at `path`, each once (matrix variants
         repeat them)."""
-        seen, found = set(), []
+        seen: set[tuple[str, int, str]] = set()
+        found: list[Diagnostic] = []
         for result in self.results.values():
             for diagnostic in result.diagnostics:
                 span = diagnostic.where.span if diagnostic.where else None
@@ -111,7 +119,7 @@ class Session:
     def errors(self, path: str) -> list[InputError]:
         """Input errors (expansion or parse) located in `path`."""
         return [e for e in self.failures.values()
-                if getattr(e, "span", None) is not None and e.span.path == path]
+                if e.span is not None and e.span.path == path]
 
     # -- fixes --------------------------------------------------------------------------
 
@@ -119,10 +127,10 @@ class Session:
                     ) -> list[FixAction]:
         """The fixes of the findings at `path` whose line is within `lines` (1-based)."""
         wanted = [d for d in self.findings(path)
-                  if lines[0] <= d.where.span.line <= lines[1]]
+                  if d.where is not None and lines[0] <= d.where.span.line <= lines[1]]
         if not wanted:
             return []
-        actions = []
+        actions: list[FixAction] = []
         for outcome in self._outcomes(unsafe):
             diagnostic = outcome.diagnostic
             if outcome.status == FIXED and any(_same(diagnostic, w) for w in wanted) \
@@ -135,7 +143,8 @@ class Session:
         keys = {(t.path, tuple(t.variant)) for t in self.targets_for(path)}
         return [_action(o) for o in self._outcomes(False, keys) if o.status == FIXED]
 
-    def _outcomes(self, unsafe: bool, keys: Iterable | None = None) -> list[FixOutcome]:
+    def _outcomes(self, unsafe: bool, keys: Iterable[TargetKey] | None = None
+                  ) -> list[FixOutcome]:
         chosen = [k for k in self.results if keys is None or k in keys]
         results = [self.results[k] for k in chosen]
         helpers = {self.results[k].target: MeshCase(self.results[k], self.targets[k].config,
@@ -146,7 +155,7 @@ class Session:
         return self.expand_options or ExpandOptions()
 
 
-def _sources(result: Any) -> set[str]:
+def _sources(result: LintResult) -> set[str]:
     expanded = result.expanded
     files = {result.target}
     if expanded is not None:

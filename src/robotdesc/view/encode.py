@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import base64
 from collections.abc import Iterable, Mapping
+from typing import Any
 
 import numpy as np
 
@@ -27,7 +28,7 @@ def _matrix(transform: np.ndarray) -> list[float]:
 
 
 def scene_document(scene: Scene, findings: Mapping[str, Iterable[Diagnostic]] | None = None,
-                   title: str | None = None) -> dict:
+                   title: str | None = None) -> dict[str, Any]:
     """The JSON-ready document of a scene.
 
     Args:

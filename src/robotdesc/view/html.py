@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import html
 import json
+from collections.abc import Mapping
 from functools import lru_cache
 from importlib import resources
 
@@ -20,7 +21,7 @@ def viewer_script() -> str:
     return resources.files("robotdesc.view").joinpath(VIEWER_RESOURCE).read_text("utf-8")
 
 
-def embedded_json(document: dict) -> str:
+def embedded_json(document: Mapping[str, object]) -> str:
     """`document` as JSON safe inside a `<script>` element (no `</` sequence, no U+2028/9)."""
     text = json.dumps(document, separators=(",", ":"), ensure_ascii=False, allow_nan=False)
     return (text.replace("<", "\\u003c").replace("\u2028", "\\u2028")
@@ -32,7 +33,7 @@ def inline_script(source: str) -> str:
     return "<script>\n" + source.replace("</script", "<\\/script") + "\n</script>"
 
 
-def view_fragment(document: dict, element_id: str = "robotdesc-view", height: str = "560px",
+def view_fragment(document: Mapping[str, object], element_id: str = "robotdesc-view", height: str = "560px",
                   include_viewer: bool = True) -> str:
     """A `<div>` that becomes the viewer, its data, and (unless already on the page) the
     viewer script.
@@ -54,7 +55,7 @@ def view_fragment(document: dict, element_id: str = "robotdesc-view", height: st
     return "\n".join(parts)
 
 
-def view_page(document: dict, title: str | None = None) -> str:
+def view_page(document: Mapping[str, object], title: str | None = None) -> str:
     """A complete HTML page showing the scene full-window."""
     heading = html.escape(title or f"{document.get('robot', 'robot')} - robotdesc view")
     return ("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"

@@ -11,13 +11,23 @@ from __future__ import annotations
 
 import logging
 import os
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from robotdesc.mesh.validate import MeshError
-from robotdesc.model.elements import Collision, MeshRef, Robot, Visual
+from robotdesc.model.elements import (
+    Box,
+    Capsule,
+    Collision,
+    Cylinder,
+    Geometry,
+    MeshRef,
+    Robot,
+    Sphere,
+    Visual,
+)
 from robotdesc.model.tree import configuration, poses_at
 from robotdesc.spatial import pose_matrix
 from robotdesc.view.inertia_box import InertiaBox, inertia_box
@@ -139,7 +149,8 @@ class Scene:
 
 def build_scene(robot: Robot, joint_values: Mapping[str, float] | None = None, *,
                 meshes: MeshFiles | None = None, package_paths: tuple[str, ...] = (),
-                package_map: tuple[tuple[str, str], ...] = (), max_faces: int = DEFAULT_MAX_FACES, kinds: tuple[str, ...] = KINDS) -> Scene:
+                package_map: tuple[tuple[str, str], ...] = (), max_faces: int = DEFAULT_MAX_FACES,
+                kinds: tuple[str, ...] = KINDS) -> Scene:
     """The display scene of `robot` at a configuration.
 
     Args:
@@ -165,7 +176,8 @@ def build_scene(robot: Robot, joint_values: Mapping[str, float] | None = None, *
     for link in robot.links:
         pose = poses[link.name]
         for kind in kinds:
-            shapes = link.visuals if kind == "visual" else link.collisions
+            shapes: Sequence[Visual | Collision] = (link.visuals if kind == "visual"
+                                                    else link.collisions)
             for index, shape in enumerate(shapes):
                 found = builder.add(shape)
                 if isinstance(found, str):
@@ -184,6 +196,11 @@ def build_scene(robot: Robot, joint_values: Mapping[str, float] | None = None, *
                  tuple(builder.geometries), tuple(instances), tuple(boxes), tuple(problems))
 
 
+#: A display shape's identity: ("mesh", resolved path, scale) or ("primitive", the class
+#: name's repr, its dimensions).
+_Key = tuple[str, str, tuple[object, ...]]
+
+
 class _GeometryStore:
     """Distinct display shapes, keyed by mesh file and scale or by primitive."""
 
@@ -191,7 +208,7 @@ class _GeometryStore:
         self.geometries: list[SceneGeometry] = []
         self._files = files
         self._max_faces = max_faces
-        self._keys: dict[tuple, int | str] = {}
+        self._keys: dict[_Key, int | str] = {}
 
     def add(self, shape: Visual | Collision) -> int | str:
         """The index of the shape's geometry, or why it cannot be shown."""
@@ -200,9 +217,9 @@ class _GeometryStore:
             return "the geometry element is missing or unreadable"
         if isinstance(geometry, MeshRef):
             resolution = self._files.resolve(geometry)
-            if not resolution.ok:
+            if not resolution.ok or resolution.path is None:
                 return resolution.problem.message if resolution.problem else "not found"
-            key: tuple = ("mesh", resolution.path, tuple(geometry.scale))
+            key: _Key = ("mesh", resolution.path, tuple(geometry.scale))
         else:
             key = ("primitive", repr(geometry.__class__.__name__),
                    tuple(v for k, v in vars(geometry).items() if k != "where"))
@@ -210,7 +227,7 @@ class _GeometryStore:
             self._keys[key] = self._make(geometry, key)
         return self._keys[key]
 
-    def _make(self, geometry, key: tuple) -> int | str:
+    def _make(self, geometry: Geometry, key: _Key) -> int | str:
         if isinstance(geometry, MeshRef):
             from robotdesc.mesh.load import load_mesh
 
@@ -239,14 +256,14 @@ class _GeometryStore:
         return len(self.geometries) - 1
 
 
-def _primitive_label(geometry) -> str:
+def _primitive_label(geometry: Box | Cylinder | Sphere | Capsule) -> str:
     values = {k: v for k, v in vars(geometry).items() if k != "where"}
     text = " ".join(f"{k}={'x'.join(f'{x:g}' for x in v) if isinstance(v, tuple) else f'{v:g}'}"
                     for k, v in values.items())
     return f"{type(geometry).__name__.lower()} {text}"
 
 
-def _color(visual: Visual, materials: dict[str, tuple[float, float, float, float]]
+def _color(visual: Visual | Collision, materials: dict[str, tuple[float, float, float, float]]
            ) -> tuple[float, float, float, float]:
     material = getattr(visual, "material", None)
     if material is None:
@@ -254,4 +271,5 @@ def _color(visual: Visual, materials: dict[str, tuple[float, float, float, float
     color = material.color or materials.get(material.name)
     if color is None or not all(np.isfinite(color)):
         return DEFAULT_COLOR
-    return tuple(float(min(max(c, 0.0), 1.0)) for c in color)  # type: ignore[return-value]
+    red, green, blue, alpha = (float(min(max(c, 0.0), 1.0)) for c in color)
+    return red, green, blue, alpha

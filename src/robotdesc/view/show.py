@@ -35,7 +35,7 @@ class View:
         height: CSS height of the inline (notebook) display.
     """
 
-    document: dict = field(repr=False)
+    document: dict[str, Any] = field(repr=False)
     height: str = "560px"
 
     def html(self) -> str:
@@ -48,7 +48,7 @@ class View:
         write_output(target, self.html().encode("utf-8"))
         return target
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
         """The scene document (JSON-ready; arrays as base64 strings)."""
         return self.document
 
@@ -67,7 +67,8 @@ class View:
 
 def show(target: Any, joint_values: Mapping[str, float] | None = None, *,
          args: Mapping[str, str] | None = None, package_paths: Sequence[str] = (),
-         package_map: Sequence[tuple[str, str]] = (), findings: Iterable[Diagnostic] | None = None, lint: bool = True,
+         package_map: Sequence[tuple[str, str]] = (),
+         findings: Iterable[Diagnostic] | None = None, lint: bool = True,
          visible: Sequence[str] = ("visual", "findings"), max_faces: int | None = None,
          title: str | None = None) -> View:
     """Build the 3D view of a robot.

@@ -29,7 +29,8 @@ def drop_degenerate(faces: np.ndarray) -> np.ndarray:
     """Faces whose three indices differ."""
     keep = (faces[:, 0] != faces[:, 1]) & (faces[:, 1] != faces[:, 2]) \
         & (faces[:, 0] != faces[:, 2])
-    return faces[keep]
+    kept: np.ndarray = faces[keep]
+    return kept
 
 
 def cluster(vertices: np.ndarray, faces: np.ndarray, max_faces: int) -> tuple[np.ndarray,
