@@ -90,25 +90,43 @@ def _crawl_packages_cached(root_text: str, max_depth: int) -> tuple[tuple[str, P
     found: dict[str, Path] = {}
 
     def visit(folder: Path, depth: int) -> None:
-        manifest = folder / "package.xml"
-        if manifest.is_file():
-            for name in _names_of(read_package_name(str(manifest)), folder):
-                found.setdefault(name, folder)
-            return
-        if depth >= max_depth or (folder / "CATKIN_IGNORE").exists() or (folder / "COLCON_IGNORE").exists():
-            return
+        # One directory listing per folder (os.scandir knows which entries are folders
+        # without a stat each): the crawl of a workspace is on every cold expansion's path.
         try:
-            children = sorted(p for p in folder.iterdir() if p.is_dir())
+            with os.scandir(folder) as listing:
+                entries = list(listing)
         except OSError:
             return
-        for child in children:
-            if child.name.startswith(".") or child.name in _SKIP_DIRS:
+        names = {entry.name: entry for entry in entries}
+        manifest = names.get("package.xml")
+        if manifest is not None and _is_file(manifest):
+            for name in _names_of(read_package_name(str(folder / "package.xml")), folder):
+                found.setdefault(name, folder)
+            return
+        if depth >= max_depth or "CATKIN_IGNORE" in names or "COLCON_IGNORE" in names:
+            return
+        for child in sorted(entry.name for entry in entries if _is_dir(entry)):
+            if child.startswith(".") or child in _SKIP_DIRS:
                 continue
-            visit(child, depth + 1)
+            visit(folder / child, depth + 1)
 
     if root.is_dir():
         visit(root, 0)
     return tuple(found.items())
+
+
+def _is_file(entry: os.DirEntry[str]) -> bool:
+    try:
+        return entry.is_file()
+    except OSError:
+        return False
+
+
+def _is_dir(entry: os.DirEntry[str]) -> bool:
+    try:
+        return entry.is_dir()
+    except OSError:
+        return False
 
 
 def _names_of(name: str | None, folder: Path) -> tuple[str, ...]:
