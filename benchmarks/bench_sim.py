@@ -42,9 +42,9 @@ def main(argv: list[str] | None = None) -> int:
 
     from robotdesc.commands.sim import _progress_writer, write_comparison
     from robotdesc.sim.compare import compare_variants
-    from robotdesc.sim.convert import SceneOptions
     from robotdesc.sim.engine import engine as engine_named
     from robotdesc.sim.load import load_sim_input
+    from robotdesc.sim.scene import SceneOptions
 
     for wheels in ns.wheels.split(","):
         main_wheels, flipper_wheels = wheels.split("/")

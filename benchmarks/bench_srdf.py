@@ -21,7 +21,7 @@ REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "src"))
 
 import robotdesc  # noqa: E402
-from robotdesc.kinematics.resolve import mesh_resolver, package_lookup  # noqa: E402
+from robotdesc.mesh.locate import MeshLocator  # noqa: E402
 from robotdesc.model.parse import parse_urdf  # noqa: E402
 from robotdesc.srdf import compute_matrix  # noqa: E402
 
@@ -81,9 +81,10 @@ def main() -> int:
     panda = ROBOTS / "panda_description/urdf/panda.urdf"
     if panda.is_file():
         robot = robotdesc.load(str(panda))
-        find = package_lookup(str(panda), package_map=(("example-robot-data",
-                                                        str(ROBOTS.parent)),))
-        measure("panda (7 dof + hand, meshes)", robot, mesh_resolver(robot, find), ns.samples,
+        meshes = MeshLocator.for_robot(robot, package_map=(("example-robot-data",
+                                                             str(ROBOTS.parent)),),
+                                       origin=str(panda))
+        measure("panda (7 dof + hand, meshes)", robot, meshes.path, ns.samples,
                 ns.workers, adaptive)
     snake_robot = parse_urdf(snake().encode(), "snake30.urdf")
     elapsed = measure("snake30 (30 links, boxes)", snake_robot, lambda mesh: None, ns.samples,
@@ -93,7 +94,7 @@ def main() -> int:
     if ENGINEER.is_file():
         start = time.perf_counter()
         robot = robotdesc.load(str(ENGINEER))
-        measure("engineer", robot, mesh_resolver(robot, package_lookup(str(ENGINEER))),
+        measure("engineer", robot, MeshLocator.for_robot(robot, origin=str(ENGINEER)).path,
                 ns.samples, ns.workers, adaptive)
         elapsed = time.perf_counter() - start  # with loading, as the command
         print(f"engineer with loading: {elapsed:.1f} s wall; before: {ENGINEER_BEFORE_S:g} s "

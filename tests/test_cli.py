@@ -46,7 +46,7 @@ def run(*args: str, cwd: Path | None = None,
     path = os.pathsep.join(filter(None, [str(REPO / "src"), os.environ.get("PYTHONPATH")]))
     environment = {**os.environ, "PYTHONPATH": path, "NO_COLOR": "1", **(env or {})}
     return subprocess.run([sys.executable, "-m", "robotdesc", *args], capture_output=True,
-                          text=True, cwd=cwd, env=environment, timeout=300)
+                          text=True, cwd=cwd, env=environment, timeout=300, check=False)
 
 
 def write(path: Path, text: str) -> Path:
@@ -102,7 +102,7 @@ def test_findings_exit_1_and_point_at_the_line(project: Path) -> None:
 def test_ignore_all_and_fail_on(project: Path) -> None:
     write(project / "broken.urdf", BROKEN_LINK)
     assert run("lint", "broken.urdf", "--ignore", "ALL", cwd=project).returncode == 0
-    code, document = lint_json("broken.urdf", cwd=project)
+    _, document = lint_json("broken.urdf", cwd=project)
     worst = max(("info", "warning", "error").index(d["severity"])
                 for d in document["diagnostics"])
     if worst < 2:  # pragma: no cover - the broken reference is expected to be an error
@@ -304,14 +304,17 @@ def test_keyboard_interrupt_exits_130(project: Path, monkeypatch, capsys) -> Non
     assert "interrupted" in capsys.readouterr().err
 
 
-def test_help_imports_no_heavy_module() -> None:
+@pytest.mark.parametrize("argv", [["--help"], ["lint", "--help"], ["expand", "--help"],
+                                  ["rule", "--help"]])
+def test_help_imports_no_heavy_module(argv: list[str]) -> None:
     code = ("import sys; from robotdesc.cli import main\n"
-            "try:\n    main(['lint', '--help'])\nexcept SystemExit:\n    pass\n"
+            f"try:\n    main({argv!r})\nexcept SystemExit:\n    pass\n"
             "heavy = {'lxml', 'xacro', 'rich', 'numpy', 'trimesh', 'yaml'} & "
             "{m.split('.')[0] for m in sys.modules}\n"
             "print(sorted(heavy))")
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                          env={**os.environ, "PYTHONPATH": str(REPO / "src")}, timeout=60)
+                          env={**os.environ, "PYTHONPATH": str(REPO / "src")}, timeout=60,
+                          check=False)
     assert proc.stdout.strip().splitlines()[-1] == "[]"
 
 

@@ -1,6 +1,10 @@
-"""Pure-Python tensor arithmetic against numpy."""
+"""Pure-Python tensor arithmetic and rotations against numpy."""
 
 from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -9,12 +13,19 @@ from robotdesc.spatial import (
     ZERO,
     compose,
     conjugated,
+    cross,
     frobenius,
     minimum_trace,
     parallel_axis,
+    perpendicular_axes,
+    principal_axes,
     principal_moments,
     rotate,
     rotated,
+    rotation_quaternion,
+    rotation_rpy,
+    rpy_matrix,
+    rpy_quaternion,
     rpy_rotation,
     scaled,
     summed,
@@ -82,3 +93,66 @@ def test_principal_moments_of_a_thin_rotated_rod() -> None:
     small, middle, large = principal_moments(rotated(rod, (0.4, 0.9, -1.3)))
     assert small == pytest.approx(1e-6, rel=1e-6)
     assert (middle, large) == pytest.approx((1.0, 1.0), rel=1e-12)
+
+
+def _quaternion_matrix(q) -> np.ndarray:
+    w, x, y, z = q
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_rpy_round_trips_and_quaternions_agree(seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    rpy = (rng.uniform(-math.pi, math.pi), rng.uniform(-1.5, 1.5), rng.uniform(-math.pi, math.pi))
+    matrix = rpy_rotation(rpy)
+    assert rotation_rpy(matrix) == pytest.approx(rpy, abs=1e-12)
+    assert rotation_rpy(rpy_matrix(rpy)) == pytest.approx(rpy, abs=1e-12)  # arrays too
+    for q in (rpy_quaternion(rpy), rotation_quaternion(matrix)):
+        assert math.isclose(sum(v * v for v in q), 1.0)
+        assert np.allclose(_quaternion_matrix(q), matrix, atol=1e-12)
+
+
+def test_rotation_rpy_in_gimbal_lock_puts_the_turn_in_yaw() -> None:
+    roll, pitch, yaw = rotation_rpy(rpy_rotation((0.4, math.pi / 2, 0.1)))
+    assert roll == 0.0 and pitch == pytest.approx(math.pi / 2)
+    assert np.allclose(rpy_rotation((roll, pitch, yaw)), rpy_rotation((0.4, math.pi / 2, 0.1)))
+
+
+@pytest.mark.parametrize("rpy", [(math.pi, 0, 0), (0, math.pi, 0), (0, 0, math.pi),
+                                 (math.pi / 2, 0, math.pi), (0, 0, 0)])
+def test_rotation_quaternion_of_half_turns(rpy) -> None:
+    """Each branch of the largest-component choice."""
+    matrix = rpy_rotation(rpy)
+    assert np.allclose(_quaternion_matrix(rotation_quaternion(matrix)), matrix, atol=1e-12)
+
+
+@pytest.mark.parametrize("axis", [(1.0, 0.0, 0.0), (0.0, 0.0, 1.0), (0.6, 0.0, 0.8),
+                                  (0.0, -1.0, 0.0)])
+def test_perpendicular_axes_complete_a_right_handed_frame(axis) -> None:
+    u, v = perpendicular_axes(axis)
+    frame = np.array([u, v, axis])
+    assert np.allclose(frame @ frame.T, np.identity(3), atol=1e-12)
+    assert np.allclose(cross(u, v), axis, atol=1e-12)
+
+
+def test_principal_axes_diagonalize_with_a_proper_rotation() -> None:
+    tensor = np.array(rotated(((1.0, 0, 0), (0, 2.0, 0), (0, 0, 3.0)), (0.3, -0.2, 0.9)))
+    moments, axes = principal_axes(tensor)
+    assert moments == pytest.approx([1.0, 2.0, 3.0])
+    assert np.linalg.det(axes) == pytest.approx(1.0)
+    assert np.allclose(axes.T @ tensor @ axes, np.diag(moments), atol=1e-12)
+    nan_moments, identity = principal_axes(np.full((3, 3), np.nan))
+    assert np.isnan(nan_moments).all() and (identity == np.identity(3)).all()
+
+
+def test_one_implementation_of_rotations_in_the_package() -> None:
+    """rpy -> matrix, matrix -> rpy, quaternions and poses are spatial's, nobody else's."""
+    src = Path(__file__).resolve().parent.parent / "src" / "robotdesc"
+    pattern = re.compile(r"^\s*def (pose_matrix|rpy\w*|\w*_rpy|\w*quat\w*|principal_axes)\(",
+                         re.MULTILINE)
+    found = {(path.relative_to(src).as_posix(), name)
+             for path in src.rglob("*.py")
+             for name in pattern.findall(path.read_text(encoding="utf-8"))}
+    assert {path for path, _ in found} == {"spatial.py"}, found

@@ -1,10 +1,21 @@
-"""The one root error of robotdesc and its two branches.
+"""Every error robotdesc raises on purpose: one root, `RobotdescError`, and its two branches.
 
 `InputError` (exit code 2) means the input could not be checked: malformed XML, an unknown
-package, a limit hit, a usage error. Anything else that escapes is a bug (exit code 3).
+package, a mesh that cannot be read, a limit hit, a usage error. A `RobotdescError` that is
+not an `InputError` (`RuleCrashed`, `WorkerCrashed`) is a bug (exit code 3), as is anything
+else that escapes.
+
+The errors of a bad argument value (`OptionError`, `SettingError`, `GeometryError`,
+`UnknownLinkError`) are also `ValueError`s, Python's convention for such values, so that code
+catching `ValueError` around a call keeps working.
+
+Every class here pickles with its fields (errors travel back from worker processes).
 """
 
 from __future__ import annotations
+
+import enum
+from typing import Any
 
 from robotdesc.source import Span
 
@@ -13,6 +24,19 @@ class RobotdescError(Exception):
     """Root of every error robotdesc raises on purpose."""
 
     exit_code: int = 3
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickle with the fields, whatever the subclass's constructor takes."""
+        return (_rebuild, (type(self), self.args, dict(self.__dict__)))
+
+
+def _rebuild(cls: type[RobotdescError], args: tuple[Any, ...],
+             state: dict[str, Any]) -> RobotdescError:
+    """An error unpickled: its class, `args` and fields restored without its constructor."""
+    error = cls.__new__(cls)
+    error.args = args
+    error.__dict__.update(state)
+    return error
 
 
 class InputError(RobotdescError):
@@ -93,3 +117,218 @@ class OutputError(InputError):
         super().__init__(message or f"cannot write {path}: {reason}")
         self.path = path
         self.reason = reason
+
+
+# --- meshes -------------------------------------------------------------------------------
+
+
+class MeshErrorKind(str, enum.Enum):
+    """Why a mesh file could not be read."""
+
+    LFS_POINTER = "lfs-pointer"
+    TRUNCATED = "truncated"
+    TOO_LARGE = "too-large"
+    NON_FINITE = "non-finite"
+    BAD_INDEX = "bad-index"
+    MALFORMED = "malformed"
+    EMPTY = "empty"
+    UNSUPPORTED = "unsupported-format"
+    BAD_SCALE = "bad-scale"
+    UNREADABLE = "unreadable"
+
+
+class MeshError(InputError):
+    """A mesh file is malformed, oversized or not a mesh at all.
+
+    Args:
+        kind: the machine-readable reason.
+        message: what is wrong, in a user's words (the file name is prepended).
+        path: the mesh file.
+        span: where the `<mesh>` element is, when the caller knows it.
+
+    Attributes:
+        kind, path: as given; detail: the message without the file name.
+    """
+
+    def __init__(self, kind: MeshErrorKind, message: str, path: str = "",
+                 span: Span | None = None) -> None:
+        text = f"{path}: {message}" if path else message
+        super().__init__(text, span)
+        self.kind = kind
+        self.path = path
+        self.detail = message
+
+
+class GeometryError(InputError, ValueError):
+    """A geometry cannot be used: a primitive dimension that is not positive and finite, a
+    mesh without triangles, a surface enclosing no volume.
+
+    Args:
+        message: what is wrong, in a user's words.
+        span: where the geometry is written, when known.
+        shape: "box", "cylinder", "sphere", "capsule", "mesh", ... ("" when unknown).
+        dimensions: the offending dimensions (m), for a primitive.
+    """
+
+    def __init__(self, message: str, span: Span | None = None, *, shape: str = "",
+                 dimensions: tuple[float, ...] = ()) -> None:
+        super().__init__(message, span)
+        self.shape = shape
+        self.dimensions = dimensions
+
+
+class NoVolumeError(GeometryError):
+    """Points span no volume (fewer than four distinct, or all coplanar): no hull."""
+
+
+# --- options and settings -----------------------------------------------------------------
+
+
+class OptionError(UsageError, ValueError):
+    """An option of a command or of an API call has a value out of range or unknown.
+
+    Args:
+        option: the option's name as the API spells it ("ratio", "max_hulls", ...).
+        value: the value given.
+        message: what is wrong, in a user's words.
+    """
+
+    def __init__(self, option: str, value: object, message: str) -> None:
+        super().__init__(message)
+        self.option = option
+        self.value = value
+
+
+class CollisionOptionError(OptionError):
+    """An option of collision generation (`CollisionOptions`, an engine limit, a method or
+    decimation engine's name) is out of range or unknown."""
+
+
+class SimOptionError(OptionError):
+    """An option of the physics checks (scene, settle, hold, drive, engine, collision
+    variant) is out of range or unknown."""
+
+
+class SettingError(ConfigError, ValueError):
+    """A configuration setting (robotdesc.toml, `[meshes]`) has a value out of range; the
+    config reader adds the file and line.
+
+    Args:
+        key: the setting as the config spells it ("mass-tolerance").
+        value: the value given.
+        message: what is wrong, in a user's words.
+    """
+
+    def __init__(self, key: str, value: object, message: str) -> None:
+        super().__init__(message)
+        self.key = key
+        self.value = value
+
+
+class UnknownLinkError(UsageError, ValueError):
+    """Links were named that the robot does not have (with the geometry asked for).
+
+    Args:
+        links: the names not found.
+        message: what is wrong, in a user's words.
+    """
+
+    def __init__(self, links: tuple[str, ...], message: str) -> None:
+        super().__init__(message)
+        self.links = links
+
+
+# --- collision outputs --------------------------------------------------------------------
+
+
+class OutputConflict(InputError):
+    """An output would overwrite a file robotdesc did not write (or one a user edited).
+
+    Args:
+        message: what is wrong, in a user's words.
+        span: the output folder or file concerned.
+        files: the files in conflict, relative to the output folder ("" entries never).
+    """
+
+    def __init__(self, message: str, span: Span | None = None,
+                 files: tuple[str, ...] = ()) -> None:
+        super().__init__(message, span)
+        self.files = files
+
+
+# --- physics checks -----------------------------------------------------------------------
+
+
+class SimUnavailable(InputError):
+    """A physics engine is not installed, so the physics checks cannot run (exit 2).
+
+    Args:
+        engine: "mujoco" or "dart".
+        requirement: what to install (a pip requirement).
+        message: the install hint.
+    """
+
+    def __init__(self, engine: str, requirement: str, message: str) -> None:
+        super().__init__(message)
+        self.engine = engine
+        self.requirement = requirement
+
+
+class SimModelError(InputError):
+    """The robot cannot become a simulation model; names the link when one is to blame.
+
+    Attributes:
+        link: the offending link's name, or "" when no single link is to blame.
+    """
+
+    def __init__(self, message: str, span: Span | None = None, link: str = "") -> None:
+        super().__init__(message, span)
+        self.link = link
+
+
+class DriveConfigError(InputError):
+    """The drive joints cannot be found or do not fit the robot.
+
+    Args:
+        message: what is wrong, in a user's words.
+        group: the drive group concerned ("" when none is).
+        joint: the joint concerned ("" when none is).
+    """
+
+    def __init__(self, message: str, span: Span | None = None, *, group: str = "",
+                 joint: str = "") -> None:
+        super().__init__(message, span)
+        self.group = group
+        self.joint = joint
+
+
+# --- bugs (exit code 3) -------------------------------------------------------------------
+
+
+class RuleCrashed(RobotdescError):
+    """A rule's check raised: a bug in robotdesc (exit code 3), named after the rule.
+
+    Attributes:
+        code, name: the rule's code and name; target: the file being linted.
+    """
+
+    def __init__(self, code: str, name: str, target: str, cause: BaseException) -> None:
+        super().__init__(f"rule {code} ({name}) crashed on {target}: "
+                         f"{type(cause).__name__}: {cause}")
+        self.code, self.name, self.target = code, name, target
+
+
+class WorkerCrashed(RobotdescError):
+    """Linting a target raised something that is not an input error (a bug, exit code 3).
+
+    Args:
+        target: the target's name.
+        summary: the exception's type and message.
+        trace: its traceback, as text (it happened in another process).
+    """
+
+    def __init__(self, target: str, summary: str, trace: str) -> None:
+        super().__init__(f"{summary} (while linting {target})\n{trace}")
+        self.target = target
+        self.summary = summary
+        self.trace = trace

@@ -18,6 +18,8 @@ if TYPE_CHECKING:
 
 Vec3 = tuple[float, float, float]
 Mat3 = tuple[Vec3, Vec3, Vec3]
+#: A unit quaternion (w, x, y, z), MuJoCo's order.
+Quat = tuple[float, float, float, float]
 
 
 class Origin(Protocol):
@@ -112,6 +114,49 @@ def rpy_rotation(rpy: Sequence[float]) -> Mat3:
                   [-sp, cp * sr, cp * cr]])
 
 
+def rotation_rpy(rotation: Sequence[Sequence[float]]) -> Vec3:
+    """URDF roll, pitch, yaw (rad) of a rotation matrix, R = Rz(yaw) Ry(pitch) Rx(roll): the
+    inverse of `rpy_rotation`; in gimbal lock (pitch +-pi/2) roll is 0 and yaw takes it all."""
+    r = rotation
+    pitch = math.asin(max(-1.0, min(1.0, -float(r[2][0]))))
+    if abs(r[2][0]) < 1 - 1e-12:
+        roll = math.atan2(r[2][1], r[2][2])
+        yaw = math.atan2(r[1][0], r[0][0])
+    else:  # roll and yaw share one axis
+        roll = 0.0
+        yaw = math.atan2(-r[0][1], r[1][1])
+    return (roll, pitch, yaw)
+
+
+def rpy_quaternion(rpy: Sequence[float]) -> Quat:
+    """URDF roll, pitch, yaw (rad) as a unit quaternion (w, x, y, z) of the same rotation."""
+    r, p, y = (float(v) / 2 for v in rpy)
+    cr, sr, cp, sp, cy, sy = (math.cos(r), math.sin(r), math.cos(p), math.sin(p),
+                              math.cos(y), math.sin(y))
+    return (cr * cp * cy + sr * sp * sy, sr * cp * cy - cr * sp * sy,
+            cr * sp * cy + sr * cp * sy, cr * cp * sy - sr * sp * cy)
+
+
+def rotation_quaternion(rotation: Sequence[Sequence[float]]) -> Quat:
+    """A rotation matrix as a unit quaternion (w, x, y, z), computed as MuJoCo's
+    `mju_mat2Quat` does (from the largest component, then normalized)."""
+    (m0, m1, m2), (m3, m4, m5), (m6, m7, m8) = ((float(v) for v in row) for row in rotation)
+    if m0 + m4 + m8 > 0:
+        w = 0.5 * math.sqrt(1 + m0 + m4 + m8)
+        q = (w, 0.25 * (m7 - m5) / w, 0.25 * (m2 - m6) / w, 0.25 * (m3 - m1) / w)
+    elif m0 > m4 and m0 > m8:
+        x = 0.5 * math.sqrt(1 + m0 - m4 - m8)
+        q = (0.25 * (m7 - m5) / x, x, 0.25 * (m1 + m3) / x, 0.25 * (m2 + m6) / x)
+    elif m4 > m8:
+        y = 0.5 * math.sqrt(1 - m0 + m4 - m8)
+        q = (0.25 * (m2 - m6) / y, 0.25 * (m1 + m3) / y, y, 0.25 * (m5 + m7) / y)
+    else:
+        z = 0.5 * math.sqrt(1 - m0 - m4 + m8)
+        q = (0.25 * (m3 - m1) / z, 0.25 * (m2 + m6) / z, 0.25 * (m5 + m7) / z, z)
+    length = math.sqrt(sum(v * v for v in q))
+    return (q[0] / length, q[1] / length, q[2] / length, q[3] / length)
+
+
 def rotate(rotation: Sequence[Sequence[float]], vector: Sequence[float]) -> Vec3:
     """R v."""
     x, y, z = vector
@@ -133,6 +178,21 @@ def add(a: Sequence[float], b: Sequence[float]) -> Vec3:
 def subtract(a: Sequence[float], b: Sequence[float]) -> Vec3:
     """a - b."""
     return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+def cross(a: Sequence[float], b: Sequence[float]) -> Vec3:
+    """a x b."""
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def perpendicular_axes(axis: Sequence[float]) -> tuple[Vec3, Vec3]:
+    """Two unit vectors u, v with (u, v, axis) a right-handed orthonormal frame; `axis` is a
+    unit vector."""
+    helper = (1.0, 0.0, 0.0) if abs(axis[0]) < 0.9 else (0.0, 1.0, 0.0)
+    u = cross(axis, helper)
+    length = norm(u)
+    u = (u[0] / length, u[1] / length, u[2] / length)
+    return u, cross(axis, u)
 
 
 def norm(values: Sequence[float]) -> float:
@@ -179,7 +239,7 @@ def _mat3(rows: Sequence[Sequence[float]]) -> Mat3:
     return tuple((float(r[0]), float(r[1]), float(r[2])) for r in rows)  # type: ignore[return-value]
 
 
-def rpy_matrix(rpy: Sequence[float]) -> "np.ndarray":
+def rpy_matrix(rpy: Sequence[float]) -> np.ndarray:
     """URDF's rotation from roll, pitch, yaw (rad, fixed axes x, y, z) as a (3, 3) array:
     `rpy_rotation` as numpy, for array code."""
     import numpy as np
@@ -187,7 +247,7 @@ def rpy_matrix(rpy: Sequence[float]) -> "np.ndarray":
     return np.array(rpy_rotation(rpy))
 
 
-def pose_matrix(pose: Origin) -> "np.ndarray":
+def pose_matrix(pose: Origin) -> np.ndarray:
     """The 4x4 homogeneous transform of an `<origin>` (child frame in the parent frame; xyz in
     m, rpy in rad, URDF's fixed-axis convention)."""
     import numpy as np
@@ -196,3 +256,17 @@ def pose_matrix(pose: Origin) -> "np.ndarray":
     matrix[:3, :3] = rpy_matrix(pose.rpy)
     matrix[:3, 3] = pose.xyz
     return matrix
+
+
+def principal_axes(tensor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Principal moments (kg*m^2, ascending) and axes (the columns, a proper rotation) of an
+    inertia tensor given as a (3, 3) array; NaN moments and the identity when it is not
+    finite."""
+    import numpy as np
+
+    if not np.all(np.isfinite(tensor)):
+        return np.full(3, np.nan), np.identity(3)
+    moments, axes = np.linalg.eigh((tensor + tensor.T) / 2)
+    if np.linalg.det(axes) < 0:
+        axes[:, 2] = -axes[:, 2]
+    return moments, axes

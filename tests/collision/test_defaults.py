@@ -14,6 +14,7 @@ from robotdesc.collision.hull import contains, convex_hull, reduce_hull
 from robotdesc.collision.limits import EngineLimits
 from robotdesc.collision.link import LinkTask, run_link
 from robotdesc.collision.options import CollisionOptions
+from robotdesc.errors import CollisionOptionError
 from robotdesc.mesh.health import merge_vertices
 from robotdesc.mesh.load import load_mesh
 
@@ -96,7 +97,7 @@ def test_limits_and_adapt_are_in_the_key_of_the_methods_that_read_them():
         assert base.key_fields() != CollisionOptions(method, limits=tight).key_fields()
     assert CollisionOptions("primitive").key_fields() == \
         CollisionOptions("primitive", limits=tight, adapt=False).key_fields()
-    with pytest.raises(ValueError, match="coacd input faces"):
+    with pytest.raises(CollisionOptionError, match="coacd input faces"):
         CollisionOptions(coacd_input_faces=2).validated()
 
 

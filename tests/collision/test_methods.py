@@ -16,11 +16,12 @@ from collision.conftest import (
     real_mesh,
 )
 from robotdesc.collision.decimate import BUDGET_SLACK, decimate, face_budget, is_closed
-from robotdesc.collision.hull import NoVolumeError, contains, convex_hull
+from robotdesc.collision.hull import contains, convex_hull
 from robotdesc.collision.link import LinkTask, run_link
 from robotdesc.collision.metrics import fidelity
 from robotdesc.collision.options import CollisionOptions
 from robotdesc.collision.tessellate import primitive_mesh
+from robotdesc.errors import CollisionOptionError, NoVolumeError
 from robotdesc.mesh.health import merge_vertices
 from robotdesc.mesh.load import load_mesh
 from robotdesc.model.elements import Cylinder, Pose
@@ -74,7 +75,7 @@ def test_the_default_engine_is_far_more_faithful_than_fast_simplification():
 
 def test_unknown_engine_is_refused():
     vertices, faces = _mesh(HIP)
-    with pytest.raises(ValueError, match="unknown decimation engine"):
+    with pytest.raises(CollisionOptionError, match="unknown decimation engine"):
         decimate(vertices, faces, 100, engine="blender")
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import pytest
 
 from robotdesc.collision.options import CollisionOptions
+from robotdesc.errors import CollisionOptionError
 
 
 def test_a_decimation_parameter_leaves_coacd_and_hull_keys_alone():
@@ -25,9 +26,10 @@ def test_a_parameter_the_method_reads_changes_its_key(method, change):
     assert base.key_fields() != CollisionOptions(method=method, **change).key_fields()
 
 
-def test_unknown_decimator_is_a_value_error():
-    with pytest.raises(ValueError, match="unknown decimator"):
+def test_unknown_decimator_is_an_option_error_naming_it():
+    with pytest.raises(CollisionOptionError, match="unknown decimator") as caught:
         CollisionOptions(decimator="blender").validated()
+    assert (caught.value.option, caught.value.value) == ("decimator", "blender")
 
 
 def test_the_cli_offers_exactly_the_methods_and_decimators():

@@ -16,6 +16,7 @@ import robotdesc
 from collision.conftest import write_urdf
 from robotdesc.cli import main
 from robotdesc.collision.xml_extent import element_extents
+from robotdesc.errors import XmlSyntaxError
 
 ROBOT = """<?xml version="1.0"?>
 <!-- a <collision> in a comment is no element -->
@@ -242,5 +243,5 @@ def test_element_extents_counts_cr_and_lf_line_breaks_as_expat_does():
 @pytest.mark.parametrize("text", ["<a><b></a>", "<a>", "<a x='>", "<a></b>", "<!-- open",
                                   "</a>"])
 def test_element_extents_refuse_what_they_cannot_pair(text):
-    with pytest.raises(ValueError):
+    with pytest.raises(XmlSyntaxError):
         element_extents(text)

@@ -77,8 +77,8 @@ def test_include_cycles_end(tmp_path) -> None:
 # --- empty placeholders ------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("text", ["<robot/>", "<robot name='placeholder'>\n  <!-- later -->\n"
-                                  "</robot>", f"<robot {XACRO}/>"])
+@pytest.mark.parametrize("text", ["<robot/>", ("<robot name='placeholder'>\n  <!-- later -->\n"
+                                                "</robot>"), f"<robot {XACRO}/>"])
 def test_an_empty_robot_is_a_placeholder(tmp_path, text: str) -> None:
     for name in ("p.urdf", "p.urdf.xacro"):
         assert is_placeholder(str(write(tmp_path / name, text)))

@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 import robotdesc
+from robotdesc import linting
 from robotdesc.config import Config
 from robotdesc.diagnostics import Finding, Severity
 from robotdesc.errors import XmlSyntaxError
@@ -168,3 +169,9 @@ def test_result_api(rules, urdf: Path) -> None:
     assert document["summary"]["error"] == 1
     assert document["diagnostics"][0]["element"] == "joint:loud"
     assert result.robot.name == "r" and result.expanded.source == str(urdf)
+
+
+def test_package_all_names_every_lazy_attribute() -> None:
+    assert linting.__all__ == sorted(linting._LAZY)
+    for name in linting.__all__:
+        assert getattr(linting, name) is not None

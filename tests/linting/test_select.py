@@ -8,7 +8,7 @@ import pytest
 
 from robotdesc.linting.select import find_rule, is_selected, select_rules, unknown_selectors
 
-RULES = [SimpleNamespace(code=c, name=n) for c, n in [
+RULES = [SimpleNamespace(code=c, name=n, opt_in=False) for c, n in [
     ("J101", "revolute-without-limit"), ("J201", "mimic-target-missing"),
     ("S001", "no-root-link"), ("RD001", "unused-suppression")]]
 

@@ -351,11 +351,11 @@ def test_package_config_sets_the_mass_and_hides_nothing():
 def test_no_link_pair_overlaps_at_the_default_configuration():
     pytest.importorskip("pinocchio", reason="pinocchio (pin) is not installed")
     import robotdesc
-    from robotdesc.kinematics.resolve import mesh_resolver, package_lookup
+    from robotdesc.mesh.locate import MeshLocator
     from robotdesc.srdf.matrix import default_collisions, prepare_scene
 
     robot = robotdesc.load(str(TOP), args={"main_track_wheels": "56", "flipper_track_wheels": "50"})
-    prepared = prepare_scene(robot, mesh_resolver(robot, package_lookup(str(TOP))))
+    prepared = prepare_scene(robot, MeshLocator.for_robot(robot, origin=str(TOP)).path)
     assert default_collisions(prepared) == []
     assert not prepared.problems
 

@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+from robotdesc.expansion.result import MacroRecursion
 from robotdesc.model.elements import Robot
 from robotdesc.rules.catalog import get_rule
-from robotdesc.rules.registry import ExpansionFacts, MacroRecursion, RuleContext
+from robotdesc.rules.registry import ExpansionFacts, RuleContext
 from robotdesc.rules.xacro import MacroRecursionOptions
 from robotdesc.source import Span
 

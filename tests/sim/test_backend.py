@@ -7,8 +7,9 @@ import sys
 import pytest
 
 from robotdesc.cli import main
+from robotdesc.errors import SimUnavailable
 from robotdesc.sim import backend
-from robotdesc.sim.backend import INSTALL_HINT, MUJOCO_REQUIREMENT, SimUnavailable
+from robotdesc.sim.backend import INSTALL_HINT, MUJOCO_REQUIREMENT
 
 from .sim_support import FIXTURES
 

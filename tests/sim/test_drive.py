@@ -8,9 +8,9 @@ import json
 import pytest
 
 from robotdesc.cli import main
+from robotdesc.errors import DriveConfigError
 from robotdesc.sim.drive import (
     DriveCommand,
-    DriveConfigError,
     DriveGroup,
     DriveOptions,
     commands,

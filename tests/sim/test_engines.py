@@ -7,8 +7,9 @@ import sys
 import pytest
 
 from robotdesc.cli import main
+from robotdesc.errors import SimOptionError, SimUnavailable
 from robotdesc.sim import backend
-from robotdesc.sim.backend import DART_INSTALL_HINT, SimUnavailable
+from robotdesc.sim.backend import DART_INSTALL_HINT, DART_REQUIREMENT
 from robotdesc.sim.compare import parse_variants
 from robotdesc.sim.engine import ENGINES, engine
 
@@ -18,14 +19,15 @@ from .sim_support import FIXTURES
 def test_registry_names_both_engines_with_their_time_steps() -> None:
     assert set(ENGINES) == {"mujoco", "dart"}
     assert engine("dart").default_timestep == 0.001  # Gazebo's
-    with pytest.raises(ValueError):
+    with pytest.raises(SimOptionError, match="unknown engine"):
         engine("ode")
 
 
 def test_missing_dartpy_gives_the_install_hint_and_exit_2(monkeypatch, capsys) -> None:
     monkeypatch.setitem(sys.modules, "dartpy", None)  # makes `import dartpy` fail
-    with pytest.raises(SimUnavailable):
+    with pytest.raises(SimUnavailable) as caught:
         backend.import_dartpy()
+    assert (caught.value.engine, caught.value.requirement) == ("dart", DART_REQUIREMENT)
     assert "pip install '.[dart]'" in DART_INSTALL_HINT
     code = main(["sim", str(FIXTURES / "slip_arm.urdf"), "--engine", "dart"])
     captured = capsys.readouterr()
@@ -35,7 +37,7 @@ def test_missing_dartpy_gives_the_install_hint_and_exit_2(monkeypatch, capsys) -
 
 def test_compare_variants_are_checked(capsys) -> None:
     assert parse_variants("visual, generated") == ("visual", "generated")
-    with pytest.raises(ValueError):
+    with pytest.raises(SimOptionError, match="unknown: magic"):
         parse_variants("visual,magic")
     assert main(["sim", str(FIXTURES / "slip_arm.urdf"), "--compare", "magic"]) == 2
 
@@ -43,7 +45,7 @@ def test_compare_variants_are_checked(capsys) -> None:
 @pytest.mark.parametrize("name", ["mujoco", "dart"])
 def test_scene_interface_on_a_small_arm(name) -> None:
     pytest.importorskip("mujoco" if name == "mujoco" else "dartpy")
-    from robotdesc.sim.convert import SceneOptions
+    from robotdesc.sim.scene import SceneOptions
 
     from .sim_support import load
 

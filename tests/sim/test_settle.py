@@ -9,6 +9,7 @@ import pytest
 
 pytest.importorskip("mujoco")
 
+from robotdesc.errors import SimOptionError  # noqa: E402
 from robotdesc.sim.hold import HoldOptions  # noqa: E402
 from robotdesc.sim.run import SimOptions, settle_robot  # noqa: E402
 from robotdesc.sim.settle import CHECKS, SettleOptions  # noqa: E402
@@ -77,9 +78,11 @@ def test_tight_joint_tolerance_reports_the_joint_and_its_link() -> None:
 
 
 def test_options_are_validated() -> None:
-    with pytest.raises(ValueError):
+    with pytest.raises(SimOptionError) as caught:
         SettleOptions(seconds=0)
-    with pytest.raises(ValueError):
+    assert (caught.value.option, caught.value.value) == ("seconds", 0)
+    with pytest.raises(SimOptionError, match="hold mode"):
         HoldOptions(mode="stiff")
-    with pytest.raises(ValueError):
+    with pytest.raises(SimOptionError) as caught:
         dataclasses.replace(SimOptions(), collision="hand-made")
+    assert caught.value.option == "collision"

@@ -6,8 +6,8 @@ from __future__ import annotations
 
 import pytest
 
-from robotdesc.sim.convert import SceneOptions
 from robotdesc.sim.engine import engine
+from robotdesc.sim.scene import SceneOptions
 
 from .drive_robot import torus_over_pole_urdf
 from .sim_support import load

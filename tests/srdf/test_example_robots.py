@@ -15,7 +15,7 @@ pytest.importorskip("pinocchio")
 from support import REPO, example_robot_data_dir  # noqa: E402
 
 import robotdesc  # noqa: E402
-from robotdesc.kinematics.resolve import mesh_resolver, package_lookup  # noqa: E402
+from robotdesc.mesh.locate import MeshLocator  # noqa: E402
 from robotdesc.srdf.matrix import Reason, compute_matrix, default_collisions, prepare_scene  # noqa: E402
 
 ROBOTS = example_robot_data_dir()
@@ -43,8 +43,8 @@ def published(srdf: str) -> dict[tuple[str, str], str | None]:
 
 def mesh_path(urdf: Path, robot):
     # the URDFs say package://example-robot-data/...: the share folder is that package
-    return mesh_resolver(robot, package_lookup(str(urdf), package_map=(
-        ("example-robot-data", str(ROBOTS.parent)),)))
+    return MeshLocator.for_robot(robot, package_map=(
+        ("example-robot-data", str(ROBOTS.parent)),), origin=str(urdf)).path
 
 
 @pytest.mark.parametrize(("urdf", "srdf", "differences"), CASES, ids=[c[0] for c in CASES])

@@ -25,6 +25,7 @@ import numpy as np
 
 from robotdesc.collision.options import DECIMATORS
 from robotdesc.collision.result import MeshPart
+from robotdesc.errors import CollisionOptionError
 from robotdesc.mesh.health import mesh_health
 
 log = logging.getLogger(__name__)
@@ -74,10 +75,13 @@ def decimate(vertices: np.ndarray, faces: np.ndarray, target: int,
         faces: (F, 3) indices.
         target: the face budget.
         engine: the engine tried first (one of ENGINES); the other is the fallback.
+
+    Raises:
+        CollisionOptionError: `engine` is not one of ENGINES.
     """
     if engine not in ENGINES:
-        raise ValueError(f"unknown decimation engine {engine!r} (choose from "
-                         f"{', '.join(ENGINES)})")
+        raise CollisionOptionError("decimator", engine, f"unknown decimation engine {engine!r} "
+                                   f"(choose from {', '.join(ENGINES)})")
     if len(faces) <= target:
         return Decimated(MeshPart(vertices, faces), "none",
                          (f"{len(faces)} faces are already within the budget of {target}",))

@@ -12,8 +12,9 @@ import os
 
 import numpy as np
 
-from robotdesc.collision.hull import NoVolumeError, convex_hull
+from robotdesc.collision.hull import convex_hull
 from robotdesc.collision.result import MeshPart
+from robotdesc.errors import NoVolumeError
 
 
 def coacd_decompose(vertices: np.ndarray, faces: np.ndarray, *, threshold: float,

@@ -13,6 +13,8 @@ from itertools import chain
 
 import numpy as np
 
+from robotdesc.errors import GeometryError
+
 #: Point-triangle pairs evaluated per numpy block (bounds the temporaries to ~100 MB).
 PAIR_BLOCK = 1 << 20
 
@@ -85,6 +87,9 @@ class SurfaceIndex:
     Args:
         vertices: (m, 3) float array.
         faces: (k, 3) integer array of indices into `vertices`.
+
+    Raises:
+        GeometryError: `faces` is empty.
     """
 
     def __init__(self, vertices: np.ndarray, faces: np.ndarray) -> None:
@@ -93,7 +98,7 @@ class SurfaceIndex:
         self.vertices = np.asarray(vertices, dtype=np.float64)
         self.faces = np.asarray(faces, dtype=np.int64)
         if len(self.faces) == 0:
-            raise ValueError("a surface needs at least one triangle")
+            raise GeometryError("a surface needs at least one triangle", shape="mesh")
         corners = self.vertices[self.faces]
         centroids = corners.mean(axis=1)
         radius = np.sqrt(((corners - centroids[:, None]) ** 2).sum(axis=2).max(axis=1))
@@ -177,4 +182,5 @@ def brute_force_distances(points: np.ndarray, vertices: np.ndarray,
 
 
 def _dot(x: np.ndarray, y: np.ndarray) -> np.ndarray:
-    return np.einsum("ij,ij->i", x, y)
+    products: np.ndarray = np.einsum("ij,ij->i", x, y)
+    return products

@@ -10,10 +10,9 @@ finding for that link; the others complete. The input robot is never modified.
 from __future__ import annotations
 
 import logging
-import os
 import time
 from dataclasses import replace
-from typing import Callable, Sequence
+from typing import Any, Callable, Sequence
 
 from robotdesc.collision.cache import CACHE_VERSION, CollisionCache
 from robotdesc.collision.limits import limit_findings
@@ -28,8 +27,8 @@ from robotdesc.collision.sources import (
     sources_digest,
 )
 from robotdesc.collision.worker import TaskFailure, default_jobs, run_tasks, start_workers_early
-from robotdesc.errors import InputError
-from robotdesc.expansion.packages import package_lookup
+from robotdesc.errors import InputError, UnknownLinkError
+from robotdesc.mesh.locate import MeshLocator
 from robotdesc.model.elements import Robot
 
 log = logging.getLogger(__name__)
@@ -49,7 +48,7 @@ def generate_collision(robot: Robot, method: str = "decimate", *,
                        use_cache: bool = True, cache_dir: str | None = None,
                        progress: Progress | None = None, scheduler: str | None = None,
                        allow_absolute_paths: bool = False,
-                       **overrides) -> CollisionResult:
+                       **overrides: Any) -> CollisionResult:
     """Make collision geometry for a robot's links and measure it.
 
     Args:
@@ -74,7 +73,8 @@ def generate_collision(robot: Robot, method: str = "decimate", *,
         Per link: the new geometry and a report (faces, hulls, volume ratio, distances).
 
     Raises:
-        ValueError: an option is out of range or a named link does not exist.
+        CollisionOptionError: an option is out of range or unknown (a `UsageError`).
+        UnknownLinkError: a link named in `links` does not exist (a `UsageError`).
         UsageError: `scheduler` is set but unreachable, or `distributed` is missing.
     """
     started = time.perf_counter()
@@ -123,7 +123,7 @@ def generate_collision(robot: Robot, method: str = "decimate", *,
 
     arguments = [task for _, task in tasks]
     if not tasks:
-        results: list = []
+        results: list[Any] = []
     elif scheduler is not None:
         from robotdesc.collision.cluster import run_tasks_on_cluster
 
@@ -173,19 +173,22 @@ def plan_links(robot: Robot, options: CollisionOptions, package_paths: Sequence[
                links: Sequence[str] | None = None, use_cache: bool = True,
                cache_dir: str | None = None, allow_absolute_paths: bool = False) -> Plan:
     """Resolve each link's sources (under the package rules of lint, see sources.py) and
-    compute its key (used by generation and --check)."""
+    compute its key (used by generation and --check).
+
+    Raises:
+        UnknownLinkError: a link named in `links` has no geometry of `options.source`.
+    """
     from robotdesc.mesh.cache import MeshCache, default_cache_dir
 
     found = link_sources(robot, options.source,
-                         package_lookup(robot.source or os.getcwd(), package_paths,
-                                        package_map),
-                         allow_absolute=allow_absolute_paths)
+                         MeshLocator.for_robot(robot, package_paths, package_map,
+                                               allow_absolute=allow_absolute_paths))
     if links is not None:
         known = {s.link for s in found}
         missing = [name for name in links if name not in known]
         if missing:
-            raise ValueError(f"no link with {options.source} geometry named "
-                             f"{', '.join(missing)}")
+            raise UnknownLinkError(tuple(missing), f"no link with {options.source} geometry "
+                                                   f"named {', '.join(missing)}")
         found = [s for s in found if s.link in set(links)]
     root = cache_dir or (default_cache_dir() if use_cache else None)
     mesh_cache = MeshCache(root) if root else None

@@ -7,10 +7,7 @@ import numpy as np
 
 from robotdesc.collision.decimate import decimate
 from robotdesc.collision.result import MeshPart
-
-
-class NoVolumeError(ValueError):
-    """The points span no volume (fewer than four, or all coplanar)."""
+from robotdesc.errors import CollisionOptionError, NoVolumeError
 
 
 def convex_hull(vertices: np.ndarray) -> MeshPart:
@@ -51,7 +48,8 @@ def contains(part: MeshPart, points: np.ndarray, tolerance: float = 0.0) -> np.n
     keep = length > 0
     normal = normal[keep] / length[keep, None]
     offset = np.einsum("ij,ij->i", normal, corners[keep, 0])
-    return (np.asarray(points) @ normal.T - offset <= tolerance).all(axis=1)
+    inside: np.ndarray = (np.asarray(points) @ normal.T - offset <= tolerance).all(axis=1)
+    return inside
 
 
 def reduce_hull(hull: MeshPart, max_vertices: int) -> MeshPart:
@@ -64,7 +62,8 @@ def reduce_hull(hull: MeshPart, max_vertices: int) -> MeshPart:
     measure. Returns `hull` itself when it already fits.
     """
     if max_vertices < 4:
-        raise ValueError(f"a hull needs at least 4 vertices, the limit is {max_vertices}")
+        raise CollisionOptionError("max_hull_vertices", max_vertices, f"a hull needs at least "
+                                   f"4 vertices, the limit is {max_vertices}")
     part = hull
     budget = 2 * max_vertices - 4
     for _ in range(40):

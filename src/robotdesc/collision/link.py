@@ -13,7 +13,7 @@ import numpy as np
 
 from robotdesc.collision.decimate import decimate, face_budget
 from robotdesc.collision.distance import SurfaceIndex
-from robotdesc.collision.hull import NoVolumeError, convex_hull, reduce_hull
+from robotdesc.collision.hull import convex_hull, reduce_hull
 from robotdesc.collision.metrics import Fidelity, fidelity, merge_parts, union_volume
 from robotdesc.collision.options import CollisionOptions
 from robotdesc.collision.result import (
@@ -25,6 +25,7 @@ from robotdesc.collision.result import (
     PrimitivePart,
 )
 from robotdesc.collision.tessellate import primitive_mesh
+from robotdesc.errors import CollisionOptionError, NoVolumeError
 
 #: decimate with `adapt`: a budget whose result misses the target is raised by at least
 #: this factor, and at most BUDGET_GROWTH_MAX (when far over).
@@ -224,7 +225,7 @@ def _make(method: str, vertices: np.ndarray, faces: np.ndarray,
         tried = ", ".join(f"{k} {v:.3f}" for k, v in fitted.tried)
         detail = "; ".join((f"{kind}, IoU {fitted.iou:.3f} (tried: {tried})",) + fitted.notes)
         return _Made(f"primitive:{kind}", (fitted.part,), detail)
-    raise ValueError(f"unknown method {method!r}")
+    raise CollisionOptionError("method", method, f"unknown method {method!r}")
 
 
 def _auto(vertices: np.ndarray, faces: np.ndarray,

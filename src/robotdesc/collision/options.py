@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import asdict, dataclass, field
+from typing import Any
 
 from robotdesc.collision.limits import EngineLimits
+from robotdesc.errors import CollisionOptionError
 
 #: The methods, in the order `auto` tries them by default (cheapest for an engine first).
 METHODS = ("decimate", "hull", "coacd", "primitive", "auto")
@@ -78,43 +81,70 @@ class CollisionOptions:
         """Self, after checking every value.
 
         Raises:
-            ValueError: a value out of range (the CLI turns it into a usage error).
+            CollisionOptionError: a value out of range or unknown, naming the option (a
+                usage error: exit code 2 on the command line).
         """
-        if self.method not in METHODS:
-            raise ValueError(f"unknown method '{self.method}' (choose from {', '.join(METHODS)})")
-        if not 0 < self.ratio <= 1:
-            raise ValueError(f"ratio must be in (0, 1], got {self.ratio}")
-        if self.faces is not None and self.faces < 4:
-            raise ValueError(f"faces must be at least 4, got {self.faces}")
-        if self.decimator not in DECIMATORS:
-            raise ValueError(f"unknown decimator '{self.decimator}' (choose from "
-                             f"{', '.join(DECIMATORS)})")
-        if not 0 < self.threshold <= 1:
-            raise ValueError(f"threshold must be in (0, 1], got {self.threshold}")
-        if self.max_hulls == 0 or self.max_hulls < -1:
-            raise ValueError(f"max hulls must be positive or -1, got {self.max_hulls}")
-        if min(self.coacd_iterations, self.coacd_depth, self.coacd_nodes,
-               self.preprocess_resolution) < 1:
-            raise ValueError("coacd iterations, depth, nodes and resolution must be positive")
-        if self.coacd_input_faces < 0 or 0 < self.coacd_input_faces < 4:
-            raise ValueError(f"coacd input faces must be 0 or at least 4, got "
-                             f"{self.coacd_input_faces}")
-        if self.hull_vertices < 4:
-            raise ValueError(f"hull vertices must be at least 4, got {self.hull_vertices}")
-        unknown = [k for k in self.primitives if k not in PRIMITIVE_KINDS]
-        if unknown or not self.primitives:
-            raise ValueError(f"primitives must be among {', '.join(PRIMITIVE_KINDS)}")
-        bad = [m for m in self.auto_order if m not in METHODS or m == "auto"]
-        if bad or not self.auto_order:
-            raise ValueError(f"auto order must list methods among decimate, hull, coacd, "
-                             f"primitive; got {', '.join(self.auto_order)}")
-        if self.target_percent <= 0 or self.samples < 10 or self.mesh_timeout_s <= 0:
-            raise ValueError("target, samples and timeout must be positive")
-        if self.source not in ("visual", "collision"):
-            raise ValueError(f"source must be visual or collision, got {self.source}")
+        problem = next(self._problems(), None)
+        if problem is not None:
+            raise CollisionOptionError(*problem)
         return self
 
-    def key_fields(self) -> dict:
+    def _problems(self) -> Iterator[tuple[str, object, str]]:
+        """(option, value, message) of each value out of range, in the order checked."""
+        if self.method not in METHODS:
+            yield ("method", self.method,
+                   f"unknown method '{self.method}' (choose from {', '.join(METHODS)})")
+        if not 0 < self.ratio <= 1:
+            yield "ratio", self.ratio, f"ratio must be in (0, 1], got {self.ratio}"
+        if self.faces is not None and self.faces < 4:
+            yield "faces", self.faces, f"faces must be at least 4, got {self.faces}"
+        if self.decimator not in DECIMATORS:
+            choices = ", ".join(DECIMATORS)
+            yield ("decimator", self.decimator,
+                   f"unknown decimator '{self.decimator}' (choose from {choices})")
+        if not 0 < self.threshold <= 1:
+            yield "threshold", self.threshold, f"threshold must be in (0, 1], got {self.threshold}"
+        if self.max_hulls == 0 or self.max_hulls < -1:
+            yield ("max_hulls", self.max_hulls,
+                   f"max hulls must be positive or -1, got {self.max_hulls}")
+        for name in ("coacd_iterations", "coacd_depth", "coacd_nodes", "preprocess_resolution"):
+            if getattr(self, name) < 1:
+                yield (name, getattr(self, name),
+                       "coacd iterations, depth, nodes and resolution must be positive")
+        if self.coacd_input_faces < 0 or 0 < self.coacd_input_faces < 4:
+            yield ("coacd_input_faces", self.coacd_input_faces,
+                   f"coacd input faces must be 0 or at least 4, got {self.coacd_input_faces}")
+        if self.hull_vertices < 4:
+            yield ("hull_vertices", self.hull_vertices,
+                   f"hull vertices must be at least 4, got {self.hull_vertices}")
+        unknown = [k for k in self.primitives if k not in PRIMITIVE_KINDS]
+        if unknown or not self.primitives:
+            yield ("primitives", self.primitives,
+                   f"primitives must be among {', '.join(PRIMITIVE_KINDS)}")
+        bad = [m for m in self.auto_order if m not in METHODS or m == "auto"]
+        if bad or not self.auto_order:
+            given = ", ".join(self.auto_order)
+            methods = "decimate, hull, coacd, primitive"
+            yield ("auto_order", self.auto_order,
+                   f"auto order must list methods among {methods}; got {given}")
+        for name, low in (("target_percent", 0.0), ("samples", 9), ("mesh_timeout_s", 0.0)):
+            if not getattr(self, name) > low:
+                yield name, getattr(self, name), "target, samples and timeout must be positive"
+        if self.source not in ("visual", "collision"):
+            yield "source", self.source, f"source must be visual or collision, got {self.source}"
+        limits = self.limits
+        if limits.max_hulls < 1:
+            yield ("limits.max_hulls", limits.max_hulls,
+                   f"the limit of hulls per link must be at least 1, got {limits.max_hulls}")
+        if limits.max_hull_vertices < 4:
+            yield ("limits.max_hull_vertices", limits.max_hull_vertices,
+                   "the limit of vertices per hull must be at least 4 (a hull needs 4), "
+                   + f"got {limits.max_hull_vertices}")
+        if limits.max_mesh_faces < 4:
+            yield ("limits.max_mesh_faces", limits.max_mesh_faces,
+                   f"the limit of faces per mesh must be at least 4, got {limits.max_mesh_faces}")
+
+    def key_fields(self) -> dict[str, Any]:
         """The parameters that change the generated geometry or its report (the cache and
         manifest key): the common ones and those of the method (all of them for auto), so
         that, say, a new decimation ratio leaves CoACD outputs current."""

@@ -43,7 +43,7 @@ from robotdesc.collision.manifest import (
 from robotdesc.collision.result import CollisionResult, MeshPart, PrimitivePart
 from robotdesc.collision.stl import stl_bytes
 from robotdesc.collision.xacro_patch import XacroPatch, build_patch
-from robotdesc.errors import InputError
+from robotdesc.errors import OutputConflict
 from robotdesc.expansion.packages import enclosing_package
 from robotdesc.model.elements import Box, Capsule, Cylinder, MeshRef, Sphere
 from robotdesc.output import (
@@ -56,10 +56,6 @@ from robotdesc.output import (
 from robotdesc.source import Span
 
 log = logging.getLogger(__name__)
-
-
-class OutputConflict(InputError):
-    """An output would overwrite a file robotdesc did not write (or one a user edited)."""
 
 
 @dataclass(frozen=True)
@@ -88,7 +84,7 @@ def earlier_outputs(out_dir: str, old: Manifest, links: list[str], base: str,
             raise OutputConflict(
                 f"the earlier outputs of {', '.join(links)} (not made in this run) cannot be "
                 f"kept: {name} is missing or was edited; nothing was written. Make those links "
-                f"too, or write to another --out", Span(path))
+                f"too, or write to another --out", Span(path), (name,))
         with open(path, "rb") as stream:
             return stream.read()
 
@@ -205,7 +201,7 @@ def write_outputs(result: CollisionResult, urdf_xml: bytes, out_dir: str, *,
     if conflicts:
         raise OutputConflict(f"refusing to overwrite {len(conflicts)} file(s) robotdesc did "
                              f"not write (or that were edited): {', '.join(sorted(conflicts))}",
-                             Span(out_dir))
+                             Span(out_dir), tuple(sorted(conflicts)))
     inputs = _not_own(inputs, out_dir, old)
     for name in [*files, MANIFEST_NAME]:  # all refused before anything is written
         check_output(os.path.join(out_dir, name), inputs, within=out_dir)

@@ -15,8 +15,9 @@ import numpy as np
 
 from robotdesc.collision.hull import convex_hull
 from robotdesc.collision.result import MeshPart, PrimitivePart
-from robotdesc.collision.tessellate import SECTIONS, matrix_rpy
+from robotdesc.collision.tessellate import SECTIONS
 from robotdesc.model.elements import Box, Capsule, Cylinder, Pose, Sphere
+from robotdesc.spatial import rotation_rpy
 
 SHRINK = (1.0, 0.9, 0.8)
 #: Rotation taking a primitive's z axis onto the box axis 0, 1, 2.
@@ -50,7 +51,7 @@ def fit_primitive(vertices: np.ndarray, faces: np.ndarray,
 
     Raises:
         ImportError: manifold3d is not installed.
-        robotdesc.collision.hull.NoVolumeError: the mesh spans no volume.
+        robotdesc.errors.NoVolumeError: the mesh spans no volume.
     """
     import manifold3d
     import trimesh
@@ -71,7 +72,7 @@ def fit_primitive(vertices: np.ndarray, faces: np.ndarray,
     kind = max(best, key=lambda k: best[k][0])
     iou, geometry, rotation, _ = best[kind]
     link_rotation = box_from[:3, :3] @ rotation
-    origin = Pose(tuple(float(v) for v in box_from[:3, 3]), matrix_rpy(link_rotation))
+    origin = Pose(tuple(float(v) for v in box_from[:3, 3]), rotation_rpy(link_rotation.tolist()))
     tried = tuple((k, round(float(v[0]), 4)) for k, v in best.items())
     return Fitted(PrimitivePart(geometry, origin), float(iou), tried, notes)
 

@@ -1,9 +1,10 @@
 """Each link's source geometry: its meshes resolved, loaded and placed in the link frame.
 
-Meshes resolve under the rules lint uses (`robotdesc.mesh.resolve`): a `package://` file
-stays inside its package, a relative path inside the package holding the file that names it
-(after symlinks), and `file://` or absolute paths only when the config allows them. A
-reference that breaks a rule is a problem of its link (a finding), never read.
+Meshes resolve through the one locator lint uses (`robotdesc.mesh.locate.MeshLocator`): a
+`package://` file stays inside its package, a relative path is taken from the file that wrote
+the `<mesh>` and stays inside its package (after symlinks), and `file://` or absolute paths
+are accepted only when the config allows them. A reference that breaks a rule is a problem of
+its link (a finding), never read.
 
 The digest of a link's sources (file contents by hash, scale, origin, primitive sizes) is
 computed without loading any mesh (through the mesh cache's stat index), so that an
@@ -16,15 +17,14 @@ import hashlib
 import json
 import os
 import stat
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 
 from robotdesc.collision.tessellate import primitive_mesh, transform_points
-from robotdesc.expansion.packages import enclosing_package
-from robotdesc.mesh.resolve import resolve_mesh
-from robotdesc.model.elements import MeshRef, Pose, Robot
+from robotdesc.mesh.locate import MeshLocator
+from robotdesc.model.elements import Geometry, MeshRef, Pose, Robot
 from robotdesc.spatial import pose_matrix
 
 
@@ -32,7 +32,7 @@ from robotdesc.spatial import pose_matrix
 class SourceItem:
     """One geometry of a link: a resolved mesh file, or a primitive."""
 
-    geometry: object
+    geometry: Geometry
     origin: Pose
     path: str | None = None
     problem: str | None = None
@@ -57,38 +57,25 @@ class LinkSources:
         return tuple(i.path for i in self.items if i.path)
 
 
-def link_sources(robot: Robot, source: str, find_package: Callable[[str], str | None],
-                 allow_absolute: bool = False) -> list[LinkSources]:
+def link_sources(robot: Robot, source: str, meshes: MeshLocator) -> list[LinkSources]:
     """The links that have geometry of the kind `source` ("visual" or "collision").
 
     Args:
         robot: the parsed robot.
         source: "visual" or "collision".
-        find_package: package name -> root folder (the lint's resolver chain).
-        allow_absolute: accept `file://` and absolute mesh paths (the config's
-            `allow_absolute_paths`; off by default, as for lint).
+        meshes: where each `<mesh>` leads (the lint's package resolver chain and the
+            config's `allow_absolute_paths`).
     """
-    roots: dict[str, str | None] = {}
-
-    def package_root(folder: str) -> str | None:
-        if folder not in roots:
-            found = enclosing_package(folder)
-            roots[folder] = str(found[1]) if found else None
-        return roots[folder]
-
     result = []
     for link in robot.links:
         elements = link.visuals if source == "visual" else link.collisions
-        items, problems = [], []
+        items: list[SourceItem] = []
+        problems: list[str] = []
         for element in elements:
             if element.geometry is None:
                 continue
             if isinstance(element.geometry, MeshRef):
-                base = _base_dir(element, robot)
-                found = resolve_mesh(element.geometry.filename, base_dir=base,
-                                     find_package=find_package,
-                                     allow_absolute=allow_absolute,
-                                     relative_root=package_root(base))
+                found = meshes.locate(element.geometry)
                 if not found.ok:
                     problems.append(found.problem.message if found.problem else "unresolved")
                     continue
@@ -101,19 +88,20 @@ def link_sources(robot: Robot, source: str, find_package: Callable[[str], str | 
 
 
 def sources_digest(sources: LinkSources, content_digest: Callable[[str], str | None],
-                   parameters: dict) -> str | None:
+                   parameters: Mapping[str, object]) -> str | None:
     """The hash of a link's sources and the parameters; None when a file cannot be read."""
-    entries = []
+    entries: list[dict[str, object]] = []
     for item in sources.items:
-        entry = {"origin": [list(item.origin.xyz), list(item.origin.rpy)]}
-        if item.path:
+        geometry = item.geometry
+        entry: dict[str, object] = {"origin": [list(item.origin.xyz), list(item.origin.rpy)]}
+        if isinstance(geometry, MeshRef) and item.path:
             digest = content_digest(item.path)
             if digest is None:
                 return None
-            entry.update(mesh=digest, scale=list(item.geometry.scale))
+            entry.update(mesh=digest, scale=list(geometry.scale))
         else:
-            entry.update(primitive=type(item.geometry).__name__,
-                         dims=[v for k, v in vars(item.geometry).items() if k != "where"])
+            entry.update(primitive=type(geometry).__name__,
+                         dims=[v for k, v in vars(geometry).items() if k != "where"])
         entries.append(entry)
     text = json.dumps({"sources": entries, "parameters": parameters}, sort_keys=True,
                       default=repr)
@@ -131,13 +119,15 @@ def load_link_soup(sources: LinkSources) -> np.ndarray:
 
     soups = []
     for item in sources.items:
-        matrix = pose_matrix(item.origin)
-        if item.path:
-            loaded = load_mesh(item.path, item.geometry.scale)
-            flat = transform_points(matrix, loaded.triangles.reshape(-1, 3))
+        geometry = item.geometry
+        if isinstance(geometry, MeshRef):
+            if item.path is None:
+                continue  # never: an unresolved reference is a problem of the link, not an item
+            loaded = load_mesh(item.path, geometry.scale)
+            flat = transform_points(pose_matrix(item.origin), loaded.triangles.reshape(-1, 3))
             soups.append(flat.reshape(-1, 3, 3))
         else:
-            part = primitive_mesh(item.geometry, item.origin)
+            part = primitive_mesh(geometry, item.origin)
             soups.append(part.vertices[part.faces])
     return np.concatenate(soups)
 
@@ -160,12 +150,3 @@ def file_digest(path: str) -> str | None:
     finally:
         os.close(handle)
     return digest.hexdigest()
-
-
-def _base_dir(element: object, robot: Robot) -> str:
-    where = getattr(element, "where", None)
-    if where is not None and where.span.path:
-        return os.path.dirname(os.path.abspath(where.span.path))
-    return os.path.dirname(os.path.abspath(robot.source)) if robot.source else os.getcwd()
-
-

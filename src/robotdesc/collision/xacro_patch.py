@@ -28,6 +28,7 @@ from lxml import etree
 
 from robotdesc.collision.manifest import read_manifest
 from robotdesc.collision.xml_extent import ElementExtent, element_extents
+from robotdesc.errors import XmlSyntaxError
 from robotdesc.expansion.packages import enclosing_package
 from robotdesc.model.elements import Link, Robot
 
@@ -270,7 +271,7 @@ def _read_source(path: str) -> _Source | str:
         return f"{os.path.basename(path)} declares the encoding {declared.group(1)} (only UTF-8 is patched)"
     try:
         extents = element_extents(text)
-    except ValueError as error:
+    except XmlSyntaxError as error:
         return f"{os.path.basename(path)} cannot be scanned as XML: {error}"
     return _Source(path, text, extents, "\r\n" if "\r\n" in text else "\n")
 

@@ -11,6 +11,9 @@ from __future__ import annotations
 import bisect
 import re
 from dataclasses import dataclass
+from typing import Any
+
+from robotdesc.errors import XmlSyntaxError
 
 _LINE_BREAK = re.compile(r"\r\n|\r|\n")
 _NAME = re.compile(r"[^\s/>]+")
@@ -48,10 +51,11 @@ def element_extents(text: str) -> tuple[ElementExtent, ...]:
     instructions and the doctype.
 
     Raises:
-        ValueError: the text is not well-formed enough to pair start and end tags.
+        XmlSyntaxError: the text is not well-formed enough to pair start and end tags (the
+            message names the line).
     """
     breaks = [m.end() for m in _LINE_BREAK.finditer(text)]
-    found: list[list] = []  # [name, start, end, content_end, line, parent]
+    found: list[list[Any]] = []  # [name, start, end, content_end, line, parent]
     opened: list[int] = []
     pos = 0
     while (lt := text.find("<", pos)) >= 0:
@@ -66,13 +70,13 @@ def element_extents(text: str) -> tuple[ElementExtent, ...]:
         elif text.startswith("</", lt):
             match = _END_TAG.match(text, lt)
             if not match or not opened or found[opened[-1]][0] != match.group(1):
-                raise ValueError(f"unexpected end tag at line {_line(breaks, lt)}")
+                raise XmlSyntaxError(f"unexpected end tag at line {_line(breaks, lt)}")
             found[opened.pop()][2:4] = [match.end(), lt]
             pos = match.end()
         else:
             name = _NAME.match(text, lt + 1)
             if name is None:
-                raise ValueError(f"a '<' that starts no tag at line {_line(breaks, lt)}")
+                raise XmlSyntaxError(f"a '<' that starts no tag at line {_line(breaks, lt)}")
             close = _tag_end(text, lt, breaks)
             closed = text[close - 1] == "/"
             found.append([name.group(), lt, close + 1 if closed else -1,
@@ -82,7 +86,8 @@ def element_extents(text: str) -> tuple[ElementExtent, ...]:
                 opened.append(len(found) - 1)
             pos = close + 1
     if opened:
-        raise ValueError(f"<{found[opened[-1]][0]}> at line {found[opened[-1]][4]} is not closed")
+        tag, line = found[opened[-1]][0], found[opened[-1]][4]
+        raise XmlSyntaxError(f"<{tag}> at line {line} is not closed")
     return tuple(ElementExtent(*record) for record in found)
 
 
@@ -93,7 +98,7 @@ def _line(breaks: list[int], offset: int) -> int:
 def _past(text: str, marker: str, start: int) -> int:
     found = text.find(marker, start)
     if found < 0:
-        raise ValueError(f"'{marker}' missing")
+        raise XmlSyntaxError(f"'{marker}' missing")
     return found + len(marker)
 
 
@@ -110,7 +115,7 @@ def _tag_end(text: str, lt: int, breaks: list[int]) -> int:
             return index
         elif char == "<":
             break
-    raise ValueError(f"the tag at line {_line(breaks, lt)} is not closed")
+    raise XmlSyntaxError(f"the tag at line {_line(breaks, lt)} is not closed")
 
 
 def _doctype_end(text: str, lt: int) -> int:
@@ -124,4 +129,4 @@ def _doctype_end(text: str, lt: int) -> int:
             depth -= 1
         elif char == ">" and depth <= 0:
             return index + 1
-    raise ValueError("the doctype is not closed")
+    raise XmlSyntaxError("the doctype is not closed")

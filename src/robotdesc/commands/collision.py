@@ -23,8 +23,8 @@ from robotdesc.collision.report import HEADER, finding_lines, table_rows, total_
 from robotdesc.commands.inputs import EXIT_FINDINGS, EXIT_OK, single_input
 from robotdesc.errors import UsageError
 from robotdesc.expansion import expand_file
-from robotdesc.expansion.packages import package_lookup
 from robotdesc.linting.inputs import run_inputs
+from robotdesc.mesh.locate import MeshLocator
 from robotdesc.output import check_output_dir
 from robotdesc.progress import progress_for
 from robotdesc.report.table import render_table
@@ -155,8 +155,8 @@ def run(ns: argparse.Namespace) -> int:
         from robotdesc.collision.sources import link_sources
 
         found = link_sources(robot, options.source,
-                             package_lookup(robot.source or os.getcwd(), package_paths,
-                                            package_map), allow_absolute=allow_absolute)
+                             MeshLocator.for_robot(robot, package_paths, package_map,
+                                                   allow_absolute=allow_absolute))
         dirs = tuple(sorted({os.path.dirname(p) for s in found for p in s.mesh_paths}))
         inputs = run_inputs(single.source, config_path=single.config.path,
                             expanded=expanded, robot=robot, package_paths=package_paths,

@@ -15,8 +15,8 @@ from robotdesc.commands.inputs import single_input
 from robotdesc.errors import UsageError
 from robotdesc.expansion import expand_file
 from robotdesc.kinematics.optional import import_pinocchio
-from robotdesc.kinematics.resolve import mesh_resolver, package_lookup
 from robotdesc.linting.inputs import run_inputs
+from robotdesc.mesh.locate import MeshLocator
 from robotdesc.progress import progress_for
 
 
@@ -47,11 +47,13 @@ def load_robot(ns: argparse.Namespace, verb: str) -> tuple[Any, Any, str, Any]:
     options = single.options
     expanded = expand_file(single.source, single.args, options=options)
     robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
-    find = package_lookup(expanded.source, options.package_paths, options.package_map)
+    meshes = MeshLocator.for_robot(robot, options.package_paths, options.package_map,
+                                   allow_absolute=single.config.meshes.allow_absolute_paths,
+                                   origin=expanded.source)
     inputs = run_inputs(single.source, config_path=single.config.path, expanded=expanded,
                         robot=robot, package_paths=options.package_paths,
                         package_map=options.package_map)
-    return robot, mesh_resolver(robot, find), single.source, inputs
+    return robot, meshes.path, single.source, inputs
 
 
 def parse_positions(items: list[str]) -> dict[str, float]:

@@ -1,5 +1,5 @@
 """The --fix, --diff and --unsafe-fixes options of `robotdesc lint` (not a subcommand of its
-own: cli.py's lint handler calls `run_fixes` before it reports)."""
+own: commands/lint.py calls `run_fixes` before it reports)."""
 
 from __future__ import annotations
 

@@ -19,6 +19,7 @@ from robotdesc.commands.inputs import single_input
 from robotdesc.errors import InputError, UsageError
 from robotdesc.progress import progress_for
 from robotdesc.sim.backend import import_mujoco
+from robotdesc.sim.scene import SceneOptions
 
 
 def register(subparsers: Any, *, common: argparse.ArgumentParser,
@@ -88,7 +89,6 @@ def run_sim(ns: argparse.Namespace) -> int:
         return run_engine_checks(ns, single)
     import_mujoco()  # fail early, with the install hint, before any expansion work
 
-    from robotdesc.sim.convert import SceneOptions
     from robotdesc.sim.hold import HoldOptions
     from robotdesc.sim.load import load_sim_input
     from robotdesc.sim.run import SimOptions, compare_rtf, settle_robot
@@ -97,7 +97,8 @@ def run_sim(ns: argparse.Namespace) -> int:
     with progress_for(ns, "sim", unit="s simulated") as bar:
         bar.update(0, detail="loading the description and meshes")
         expand_options = single.options
-        loaded = load_sim_input(single.source, single.args, expand_options)
+        loaded = load_sim_input(single.source, single.args, expand_options,
+                                allow_absolute=single.config.meshes.allow_absolute_paths)
         hold = HoldOptions(mode="passive" if ns.passive else "position")
         options = SimOptions(settle=SettleOptions(seconds=ns.seconds, hold=hold),
                              scene=SceneOptions(drop_height=ns.drop_height,
@@ -157,7 +158,6 @@ def write_rtf(out: TextIO, comparison: Any) -> None:
 def run_engine_checks(ns: argparse.Namespace, single: Any) -> int:
     """--engine, --compare, --drive and JSON output: exit 0 pass, 1 fail, 2 input error."""
     from robotdesc.sim.compare import compare_variants, parse_variants
-    from robotdesc.sim.convert import SceneOptions
     from robotdesc.sim.engine import engine as engine_named
     from robotdesc.sim.hold import HoldOptions
     from robotdesc.sim.load import load_sim_input
@@ -168,7 +168,8 @@ def run_engine_checks(ns: argparse.Namespace, single: Any) -> int:
         variants = parse_variants(ns.compare) if ns.compare else None
     except ValueError as error:
         raise UsageError(str(error)) from None
-    loaded = load_sim_input(single.source, single.args, single.options)
+    loaded = load_sim_input(single.source, single.args, single.options,
+                            allow_absolute=single.config.meshes.allow_absolute_paths)
     package_map = tuple(single.options.package_map)
     hold = HoldOptions(mode="passive" if ns.passive else "position")
     scene_options = SceneOptions(timestep=ns.timestep or engine.default_timestep,

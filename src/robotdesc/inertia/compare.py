@@ -59,7 +59,13 @@ class InertiaComparison:
 
 
 def declared_tensor(inertial: Inertial) -> Mat3:
-    """The declared tensor rotated from the `<inertial><origin rpy>` frame into link axes."""
+    """The declared tensor rotated from the `<inertial><origin rpy>` frame into link axes.
+
+    Raises:
+        ValueError: the `<inertial>` has no `<inertia>` (callers check that it has).
+    """
+    if inertial.inertia is None:
+        raise ValueError("the <inertial> declares no <inertia>")
     return rotated(inertial.inertia.matrix(), inertial.origin.rpy)
 
 
@@ -71,19 +77,29 @@ def compare_inertia(inertial: Inertial, geometry: MassProperties,
         inertial: the declared `<inertial>` (mass and inertia present).
         geometry: the link's geometry at density 1 (link frame).
         tolerance: the relative tolerance the cause analysis uses.
+
+    Raises:
+        ValueError: the `<inertial>` declares no mass or no `<inertia>`.
     """
+    if inertial.mass is None:
+        raise ValueError("the <inertial> declares no mass")
     declared = declared_tensor(inertial)
     derived = geometry.scaled_to_mass(inertial.mass).inertia
     dm = principal_moments(declared)
     gm = principal_moments(derived)
-    errors = tuple(abs(d - g) / g if g > 0 else math.inf for d, g in zip(dm, gm))
+    errors = (_relative(dm[0], gm[0]), _relative(dm[1], gm[1]), _relative(dm[2], gm[2]))
     norm = frobenius(derived)
     tensor_error = frobenius(difference(declared, derived)) / norm if norm > 0 else math.inf
-    result = InertiaComparison(declared, derived, dm, gm, errors, tensor_error)  # type: ignore[arg-type]
+    result = InertiaComparison(declared, derived, dm, gm, errors, tensor_error)
     if not result.mismatch(tolerance):
         return result
-    return InertiaComparison(declared, derived, dm, gm, errors, tensor_error,  # type: ignore[arg-type]
+    return InertiaComparison(declared, derived, dm, gm, errors, tensor_error,
                              likely_cause(declared, derived, dm, gm, tolerance))
+
+
+def _relative(declared: float, derived: float) -> float:
+    """|declared - derived| / derived; infinite when `derived` is not positive."""
+    return abs(declared - derived) / derived if derived > 0 else math.inf
 
 
 def likely_cause(declared: Mat3, derived: Mat3, declared_moments: Vec3, derived_moments: Vec3,

@@ -50,7 +50,8 @@ def build_patch(suggestions: Iterable[Suggestion], relative_to: str | None = Non
             continue
         path, start, end, lines = planned
         edits.setdefault(path, []).append((start, end, lines, item.link))
-    chunks, changed = [], []
+    chunks: list[str] = []
+    changed: list[tuple[str, str]] = []
     for path in sorted(edits):
         original = _read_lines(path)
         updated = list(original)
@@ -78,7 +79,7 @@ def _plan(item: Suggestion) -> tuple[str, int, int, list[str]] | str:
     index = span.line - 1
     if index >= len(lines):
         return f"line {span.line} is past the end of {span.path}"
-    indent = re.match(r"\s*", lines[index]).group(0)
+    indent = lines[index][:len(lines[index]) - len(lines[index].lstrip())]
     if item.replaces is not None:
         if "<inertial" not in lines[index]:
             return f"no <inertial> at {span.path}:{span.line}"

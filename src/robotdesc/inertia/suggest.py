@@ -8,16 +8,23 @@ Units: kg, m, kg*m^2.
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TypeVar
 
+from robotdesc.inertia.mesh_access import MeshAccess
+from robotdesc.inertia.table import InertiaRow, inertia_table
 from robotdesc.mesh.context import LinkGeometry, MeshContext
 from robotdesc.mesh.properties import MassProperties
 from robotdesc.mesh.scale_check import looks_like_millimetres, robot_size
-from robotdesc.model.elements import Link, MeshRef, Robot
+from robotdesc.model.elements import Collision, Link, MeshRef, Robot, Visual
 from robotdesc.source import Span
 
 #: The scale that turns a mesh exported in millimetres into metres.
 MILLIMETRE = 0.001
+
+#: A `<visual>` or a `<collision>`.
+ShapeT = TypeVar("ShapeT", Visual, Collision)
 
 #: The density assumed when a link declares no usable mass (kg/m^3): a guess, said so.
 FALLBACK_DENSITY = 1000.0
@@ -73,7 +80,7 @@ def suggest_inertial(link: Link, geometry: MassProperties,
                       link.where.span if link.where else None, source, in_macro)
 
 
-def millimetre_meshes(robot: Robot, meshes: MeshContext, link: Link,
+def millimetre_meshes(robot: Robot, meshes: MeshAccess, link: Link,
                       source: str) -> tuple[MeshRef, ...]:
     """The link's `<mesh>` references of `source` ("collision" or "visual") that look like
     millimetres (M108's test: about 1000 times larger than the robot)."""
@@ -81,14 +88,14 @@ def millimetre_meshes(robot: Robot, meshes: MeshContext, link: Link,
     refs = [s.geometry for s in shapes if isinstance(s.geometry, MeshRef)]
     if not refs:
         return ()
-    diagonals = {}
+    diagonals: dict[int, float] = {}
     for _, _, _, _, ref in meshes.meshes():
         summary = meshes.lookup(ref).summary
         if summary is not None:
             x, y, z = summary.extent
             diagonals[id(ref)] = (x * x + y * y + z * z) ** 0.5
     size = robot_size(robot)
-    found = []
+    found: list[MeshRef] = []
     for ref in refs:
         own = diagonals.get(id(ref))
         if own is None:
@@ -99,7 +106,7 @@ def millimetre_meshes(robot: Robot, meshes: MeshContext, link: Link,
     return tuple(found)
 
 
-def corrected_geometry(robot: Robot, meshes: MeshContext, link: Link,
+def corrected_geometry(robot: Robot, meshes: MeshAccess, link: Link,
                        geometry: LinkGeometry) -> tuple[LinkGeometry, str | None]:
     """The link's geometry with meshes diagnosed as millimetres scaled by 0.001, and a note
     that says so (the geometry itself and None when no mesh is in millimetres)."""
@@ -107,14 +114,8 @@ def corrected_geometry(robot: Robot, meshes: MeshContext, link: Link,
     if not wrong:
         return geometry, None
     ids = {id(ref) for ref in wrong}
-
-    def fixed(shapes):
-        return tuple(dataclasses.replace(shape, geometry=dataclasses.replace(
-            shape.geometry, scale=tuple(v * MILLIMETRE for v in shape.geometry.scale)))
-            if id(shape.geometry) in ids else shape for shape in shapes)
-
-    scaled_link = dataclasses.replace(link, visuals=fixed(link.visuals),
-                                      collisions=fixed(link.collisions))
+    scaled_link = dataclasses.replace(link, visuals=_scaled(link.visuals, ids),
+                                      collisions=_scaled(link.collisions, ids))
     context = MeshContext(robot, meshes.settings, meshes.find_package)
     measured = context.link_geometry(scaled_link, geometry.source)
     if not measured.trusted:
@@ -124,7 +125,22 @@ def corrected_geometry(robot: Robot, meshes: MeshContext, link: Link,
                       "the <mesh>; this block assumes it")
 
 
-def suggest_for_link(robot: Robot, meshes: MeshContext, link: Link,
+def _scaled(shapes: tuple[ShapeT, ...], ids: set[int]) -> tuple[ShapeT, ...]:
+    """The shapes, those whose `<mesh>` is one of `ids` scaled by MILLIMETRE."""
+    return tuple(_scaled_shape(shape) if id(shape.geometry) in ids else shape
+                 for shape in shapes)
+
+
+def _scaled_shape(shape: ShapeT) -> ShapeT:
+    geometry = shape.geometry
+    if not isinstance(geometry, MeshRef):
+        return shape
+    x, y, z = geometry.scale
+    return dataclasses.replace(shape, geometry=dataclasses.replace(
+        geometry, scale=(x * MILLIMETRE, y * MILLIMETRE, z * MILLIMETRE)))
+
+
+def suggest_for_link(robot: Robot, meshes: MeshAccess, link: Link,
                      fallback_density: float = FALLBACK_DENSITY) -> Suggestion | None:
     """The suggested `<inertial>` of one link from its measured geometry, with meshes in
     millimetres scaled first; None when the geometry cannot be trusted."""
@@ -132,6 +148,8 @@ def suggest_for_link(robot: Robot, meshes: MeshContext, link: Link,
     if not geometry.trusted:
         return None
     geometry, note = corrected_geometry(robot, meshes, link, geometry)
+    if geometry.properties is None:  # trusted geometry has properties
+        return None
     return suggest_inertial(link, geometry.properties, fallback_density, note)
 
 
@@ -161,12 +179,12 @@ def _num(value: float) -> str:
     return "0" if text in ("-0", "0") else text
 
 
-def _vec(values) -> str:
+def _vec(values: Sequence[float]) -> str:
     return " ".join(_num(v) for v in values)
 
 
-def select_suggestions(robot: Robot, meshes: MeshContext, rows=None, everything: bool = False,
-                       tolerance: float = 0.5) -> list[Suggestion]:
+def select_suggestions(robot: Robot, meshes: MeshAccess, rows: Sequence[InertiaRow] | None = None,
+                       everything: bool = False, tolerance: float = 0.5) -> list[Suggestion]:
     """The suggestions `robotdesc inertia --suggest` prints and `--write` patches.
 
     A link is chosen when its geometry can be trusted and it has no declared inertia, or its
@@ -177,11 +195,9 @@ def select_suggestions(robot: Robot, meshes: MeshContext, rows=None, everything:
     Args:
         rows: the inertia table (`robotdesc.inertia.table.inertia_table`), computed when None.
     """
-    from robotdesc.inertia.table import inertia_table
-
     table = rows if rows is not None else inertia_table(robot, meshes, tolerance)
     errors = {row.link: row.error for row in table}
-    found = []
+    found: list[Suggestion] = []
     for link in robot.links:
         if link.name not in errors:
             continue

@@ -7,14 +7,16 @@ the declared mass (the geometry alone says nothing about mass, only about its di
 from __future__ import annotations
 
 import textwrap
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
 
 from robotdesc.inertia.compare import compare_inertia
-from robotdesc.mesh.context import MeshContext
+from robotdesc.inertia.mesh_access import MeshAccess
 from robotdesc.model.elements import Robot
+from robotdesc.spatial import Vec3
 
-Vec3 = tuple[float, float, float]
+#: A row as JSON: numbers, strings, lists of numbers, lists of strings, or null.
+JsonValue = float | str | list[float] | list[str] | None
 
 
 @dataclass(frozen=True)
@@ -50,8 +52,14 @@ class InertiaRow:
     cause: str | None
     notes: tuple[str, ...] = ()
 
-    def to_json(self) -> dict[str, Any]:
-        return {k: (list(v) if isinstance(v, tuple) else v) for k, v in vars(self).items()}
+    def to_json(self) -> dict[str, JsonValue]:
+        """The row as JSON, one key per attribute (tuples as lists)."""
+        return {"link": self.link, "source": self.source, "declared_mass": self.declared_mass,
+                "volume": self.volume, "density": self.density,
+                "declared_com": _list(self.declared_com), "derived_com": _list(self.derived_com),
+                "declared_moments": _list(self.declared_moments),
+                "derived_moments": _list(self.derived_moments), "error": self.error,
+                "cause": self.cause, "notes": list(self.notes)}
 
 
 @dataclass(frozen=True)
@@ -72,18 +80,18 @@ class InertiaTable:
     def row(self, link: str) -> InertiaRow | None:
         return next((row for row in self.rows if row.link == link), None)
 
-    def to_dict(self) -> dict[str, Any]:
+    def to_dict(self) -> dict[str, str | list[dict[str, JsonValue]]]:
         return {"target": self.target, "source": self.source,
                 "links": [row.to_json() for row in self.rows]}
 
     def __str__(self) -> str:
         return render_table(list(self.rows))
 
-def inertia_table(robot: Robot, meshes: MeshContext, tolerance: float = 0.5) -> list[InertiaRow]:
+def inertia_table(robot: Robot, meshes: MeshAccess, tolerance: float = 0.5) -> list[InertiaRow]:
     """One row per link that declares an inertial or has geometry."""
     from robotdesc.spatial import principal_moments
 
-    rows = []
+    rows: list[InertiaRow] = []
     for link in robot.links:
         inertial = link.inertial
         geometry = meshes.link_geometry(link)
@@ -95,10 +103,12 @@ def inertia_table(robot: Robot, meshes: MeshContext, tolerance: float = 0.5) -> 
         density = mass / volume if mass is not None and volume else None
         declared_moments = (principal_moments(inertial.inertia.matrix())
                             if inertial is not None and inertial.inertia is not None else None)
-        derived_moments = error = cause = None
+        derived_moments: Vec3 | None = None
+        error: float | None = None
+        cause: str | None = None
         if props is not None and mass is not None and mass > 0:
             derived_moments = props.scaled_to_mass(mass).principal_moments()
-            if declared_moments is not None and geometry.trusted:
+            if inertial is not None and declared_moments is not None and geometry.trusted:
                 comparison = compare_inertia(inertial, props, tolerance)
                 error = max(*comparison.moment_errors, comparison.tensor_error)
                 cause = comparison.cause
@@ -138,5 +148,9 @@ def _num(value: float | None) -> str:
     return "-" if value is None else f"{value:.4g}"
 
 
-def _vec(values) -> str:
+def _list(values: Vec3 | None) -> list[float] | None:
+    return list(values) if values is not None else None
+
+
+def _vec(values: Sequence[float] | None) -> str:
     return "-" if values is None else " ".join(f"{v:.4g}" for v in values)

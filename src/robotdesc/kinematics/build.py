@@ -120,7 +120,7 @@ def build_model(robot: Robot, mesh_path: MeshPath = lambda mesh: None) -> Kinema
 
     Args:
         robot: the parsed robot.
-        mesh_path: resolves `<mesh>` references for the URDF text (see `resolve.mesh_resolver`).
+        mesh_path: resolves `<mesh>` references for the URDF text (`MeshLocator.path`).
 
     Raises:
         KinematicsUnavailable: Pinocchio is not installed.

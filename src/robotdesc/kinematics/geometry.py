@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from robotdesc.errors import MeshError
 from robotdesc.kinematics.urdf_text import MeshPath
 from robotdesc.model.elements import Box, Capsule, Cylinder, MeshRef, Robot, Sphere
 from robotdesc.source import Provenance
@@ -88,8 +89,6 @@ def _load_triangles(path: str, scale: tuple[float, float, float], mtime_ns: int,
 def collision_shapes(robot: Robot, mesh_path: MeshPath) -> tuple[list[CollisionShape],
                                                                  list[ShapeProblem]]:
     """Every readable `<collision>` of the robot, and the ones left out with the reason."""
-    from robotdesc.mesh.validate import MeshError
-
     shapes: list[CollisionShape] = []
     problems: list[ShapeProblem] = []
     for link in robot.links:

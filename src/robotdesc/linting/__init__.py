@@ -15,7 +15,8 @@ _LAZY = {"lint_file": "driver", "LintResult": "result", "RuleCrashed": "result",
          "LintFailure": "result",
          "discover_targets": "targets", "LintTarget": "targets", "lint_targets": "parallel"}
 
-__all__ = sorted(_LAZY)
+__all__ = ["LintFailure", "LintResult", "LintTarget", "RuleCrashed", "discover_targets",
+           "lint_file", "lint_targets"]
 
 
 def __getattr__(name: str) -> Any:

@@ -17,8 +17,8 @@ import dataclasses
 import json
 import os
 from collections import Counter
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 from robotdesc.diagnostics import Diagnostic
 from robotdesc.errors import InputError
@@ -30,6 +30,10 @@ BASELINE_VERSION = 1
 
 #: (target, code, element, message)
 Key = tuple[str, str, str, str]
+#: One recorded finding as JSON: the four parts of its key and its count.
+Entry = dict[str, str | int]
+#: The baseline file as JSON: its version and its entries.
+Document = dict[str, int | list[Entry]]
 
 
 @dataclass(frozen=True)
@@ -54,11 +58,11 @@ def finding_key(diagnostic: Diagnostic, result: LintResult, base: str) -> Key:
             diagnostic.element, diagnostic.message.replace(prefix, ""))
 
 
-def baseline_document(results: Sequence[LintResult], base: str) -> dict:
+def baseline_document(results: Sequence[LintResult], base: str) -> Document:
     """The baseline of `results` as a JSON-ready dict (paths relative to `base`)."""
     counts = Counter(finding_key(d, r, base) for r in results for d in r.diagnostics)
-    findings = [{"target": t, "code": c, "element": e, "message": m, "count": n}
-                for (t, c, e, m), n in sorted(counts.items())]
+    findings: list[Entry] = [{"target": t, "code": c, "element": e, "message": m, "count": n}
+                             for (t, c, e, m), n in sorted(counts.items())]
     return {"robotdesc_baseline": BASELINE_VERSION, "findings": findings}
 
 
@@ -68,7 +72,7 @@ def render_baseline(results: Sequence[LintResult], path: str) -> str:
     return json.dumps(document, indent=2, ensure_ascii=False) + "\n"
 
 
-def read_baseline(path: str) -> Counter:
+def read_baseline(path: str) -> Counter[Key]:
     """The recorded findings of a baseline file, counted by key.
 
     Raises:
@@ -79,17 +83,18 @@ def read_baseline(path: str) -> Counter:
             document = json.load(handle)
     except OSError as exc:
         raise InputError(f"cannot read baseline: {exc.strerror}", Span(path)) from None
-    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
-        line = getattr(exc, "lineno", 0)
-        raise InputError(f"baseline is not valid JSON: {getattr(exc, 'msg', exc)}",
-                         Span(path, line)) from None
+    except json.JSONDecodeError as exc:
+        raise InputError(f"baseline is not valid JSON: {exc.msg}",
+                         Span(path, exc.lineno)) from None
+    except UnicodeDecodeError as exc:
+        raise InputError(f"baseline is not valid JSON: {exc}", Span(path)) from None
     if not isinstance(document, dict) or document.get("robotdesc_baseline") != BASELINE_VERSION:
         raise InputError("not a robotdesc baseline (version "
                          f"{BASELINE_VERSION}); write one with --write-baseline", Span(path))
-    counts: Counter = Counter()
+    counts: Counter[Key] = Counter()
     for entry in document.get("findings", []):
         try:
-            key = (entry["target"], entry["code"], entry["element"], entry["message"])
+            key: Key = (entry["target"], entry["code"], entry["element"], entry["message"])
             count = int(entry.get("count", 1))
         except (TypeError, KeyError, ValueError):
             raise InputError(f"baseline entry is malformed: {entry!r}", Span(path)) from None
@@ -97,7 +102,7 @@ def read_baseline(path: str) -> Counter:
     return counts
 
 
-def apply_baseline(results: Sequence[LintResult], baseline: Counter,
+def apply_baseline(results: Sequence[LintResult], baseline: Counter[Key],
                    base: str) -> BaselineOutcome:
     """Remove the findings the baseline records (as many of each as it counts).
 
@@ -107,9 +112,10 @@ def apply_baseline(results: Sequence[LintResult], baseline: Counter,
         base: the baseline file's directory (target paths are relative to it).
     """
     remaining = Counter(baseline)
-    kept_results, matched = [], 0
+    kept_results: list[LintResult] = []
+    matched = 0
     for result in results:
-        kept = []
+        kept: list[Diagnostic] = []
         for diagnostic in result.diagnostics:
             key = finding_key(diagnostic, result, base)
             if remaining[key] > 0:

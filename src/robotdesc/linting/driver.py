@@ -9,19 +9,21 @@ import dataclasses
 import fnmatch
 import logging
 import os
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
-from typing import Any, Iterable, Mapping, Sequence
 
 from robotdesc.cache_dir import default_cache_dir
 from robotdesc.config import Config, discover_config
 from robotdesc.diagnostics import Diagnostic, Finding, Severity
-from robotdesc.errors import RobotdescError
+from robotdesc.errors import RobotdescError, RuleCrashed
 from robotdesc.expansion import ExpandOptions, expand_file
 from robotdesc.linting import rule_cache
-from robotdesc.linting.result import LintResult, RuleCrashed
+from robotdesc.linting.result import LintResult
 from robotdesc.linting.select import is_selected, select_rules
-from robotdesc.linting.suppress import apply_suppressions, scan_files, unused_codes
-from robotdesc.rules.registry import ExpansionFacts, RuleContext, SourceDocument, run_rule
+from robotdesc.linting.suppress import Suppression, apply_suppressions, scan_files, unused_codes
+from robotdesc.mesh.context import MeshContext
+from robotdesc.model.elements import Robot
+from robotdesc.rules.registry import ExpansionFacts, Rule, RuleContext, SourceDocument, run_rule
 from robotdesc.source import Provenance, Span
 
 log = logging.getLogger(__name__)
@@ -32,7 +34,8 @@ __all__ = ["LintResult", "RuleCrashed", "lint_file"]
 
 
 def lint_file(path: str, config: Config | None = None, *,
-              args: Mapping[str, str] | None = None, expand_options: Any = None,
+              args: Mapping[str, str] | None = None,
+              expand_options: ExpandOptions | None = None,
               select: Sequence[str] | None = None, ignore: Sequence[str] = ()) -> LintResult:
     """Lint one description (.urdf, .urdf.xacro, .xacro).
 
@@ -40,8 +43,8 @@ def lint_file(path: str, config: Config | None = None, *,
         path: the file to lint.
         config: the settings (default: discovered by walking up from `path`).
         args: xacro arguments; they override the config's `args`.
-        expand_options: `robotdesc.expansion.ExpandOptions`; the config's packages are added to
-            its `package_map` after the explicit ones.
+        expand_options: the expansion settings; the config's packages are added to its
+            `package_map` after the explicit ones.
         select: rule selectors that replace the config's `select`.
         ignore: rule selectors added to the config's `ignore`.
 
@@ -73,7 +76,7 @@ def lint_file(path: str, config: Config | None = None, *,
     document = SourceDocument(expanded.xml, expanded.source, tuple(expanded.files))
 
     meshes = _mesh_context(rules, robot, target, config, options)
-    diagnostics = []
+    diagnostics: list[Diagnostic] = []
     for rule in rules:
         configured = config.options_for(rule.code)
         context = RuleContext(options=configured if configured is not None
@@ -111,13 +114,14 @@ def lint_file(path: str, config: Config | None = None, *,
                       config_path=config.path, rules_run=tuple(r.code for r in rules))
 
 
-def _run_cached(rule: Any, robot: Any, context: Any, document: bytes, options: Any) -> list:
+def _run_cached(rule: Rule, robot: Robot, context: RuleContext, document: bytes,
+                options: ExpandOptions) -> list[Finding]:
     """Run one rule; the findings of expensive rules come from the rule cache when valid."""
     if not (options.use_cache and rule_cache.is_cached(rule)):
         return list(run_rule(rule, robot, context))
 
     folder = Path(options.cache_dir) if options.cache_dir else default_cache_dir()
-    key = rule_cache.rule_key(rule, context.options, document, _mesh_files(robot, context),
+    key = rule_cache.rule_key(rule, context.options, document, _mesh_files(context),
                               source=robot.source or "")
     found = rule_cache.load(folder, key)
     if found is None:
@@ -126,51 +130,45 @@ def _run_cached(rule: Any, robot: Any, context: Any, document: bytes, options: A
     return found
 
 
-def _mesh_files(robot: Any, context: Any) -> list[str]:
+def _mesh_files(context: RuleContext) -> list[str]:
     """The resolved files of every `<mesh>` (for rules that read meshes)."""
     if context.meshes is None:
         return []
-    paths = []
-    for link in robot.links:
-        for element in (*link.visuals, *link.collisions):
-            ref = element.geometry
-            if ref is not None and hasattr(ref, "filename"):
-                path = context.meshes.lookup(ref).resolution.path
-                paths.append(path or ref.filename)
-    return paths
+    return [context.meshes.lookup(ref).resolution.path or ref.filename
+            for _link, _kind, _index, _element, ref in context.meshes.meshes()]
 
 
-def _mesh_context(rules: Sequence[Any], robot: Any, target: str, config: Config,
-                  options: Any) -> Any:
-    """The mesh access for rules that need meshes; None (and nothing imported) otherwise."""
+def _mesh_context(rules: Sequence[Rule], robot: Robot, target: str, config: Config,
+                  options: ExpandOptions) -> MeshContext | None:
+    """The mesh access for rules that need meshes; None otherwise (nothing is read before a
+    rule asks)."""
     if not any("meshes" in rule.needs for rule in rules):
         return None
-    from robotdesc.mesh.context import MeshContext
-
     return MeshContext.for_file(robot, target, config.meshes, tuple(options.package_paths),
                                 tuple(options.package_map))
 
 
-def _diagnostic(rule: Any, severity: Severity, finding: Finding, fallback: Provenance,
+def _diagnostic(rule: Rule, severity: Severity, finding: Finding, fallback: Provenance,
                 target: str) -> Diagnostic:
     return Diagnostic(code=rule.code, name=rule.name, severity=severity,
                       message=finding.message, where=finding.where or fallback,
                       element=finding.element, fix=finding.fix, target=target)
 
 
-def _unused_findings(suppressions: Iterable[Any], used: frozenset, ran: set[str],
+def _unused_findings(suppressions: Iterable[Suppression],
+                     used: frozenset[tuple[Suppression, str]], ran: set[str],
                      known: set[str]) -> Iterable[Finding]:
     """RD001 findings: comments naming no code, unknown codes, and codes that hit nothing.
 
     A code of a rule that did not run (not selected) is not reported: it cannot be judged.
     """
-    suppressions = list(suppressions)
-    for suppression in suppressions:
+    written = list(suppressions)
+    for suppression in written:
         where = Provenance(Span(suppression.path, suppression.line, suppression.col))
         if not suppression.codes:
             yield Finding("suppression comment names no rule code "
                           "(write `robotdesc: ignore CODE`)", where, "comment")
-    for suppression, code in unused_codes(suppressions, used):
+    for suppression, code in unused_codes(written, used):
         where = Provenance(Span(suppression.path, suppression.line, suppression.col))
         if code not in known:
             yield Finding(f"suppression names unknown rule '{code}'", where, f"comment:{code}")
@@ -203,5 +201,5 @@ def _glob_matches(glob: str, path: str, root: str) -> bool:
     pattern = glob.replace(os.sep, "/")
     if "/" not in pattern:
         return fnmatch.fnmatch(os.path.basename(absolute), pattern)
-    candidates = {pattern, pattern[3:] if pattern.startswith("**/") else pattern}
+    candidates = {pattern, pattern.removeprefix("**/")}
     return any(fnmatch.fnmatch(relative, p) or fnmatch.fnmatch(absolute, p) for p in candidates)

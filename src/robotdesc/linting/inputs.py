@@ -6,11 +6,11 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterable, Sequence
-from typing import Any
 
-from robotdesc.expansion.packages import enclosing_package, package_lookup
-from robotdesc.mesh.resolve import resolve_mesh
-from robotdesc.model.elements import MeshRef
+from robotdesc.expansion.packages import enclosing_package
+from robotdesc.expansion.result import Expanded
+from robotdesc.mesh.locate import MeshLocator
+from robotdesc.model.elements import MeshRef, Robot
 from robotdesc.output import RunInputs
 
 
@@ -27,9 +27,8 @@ def description_inputs(source: str | None, config_path: str | None = None) -> Ru
     return inputs
 
 
-def expansion_inputs(expanded: Any) -> RunInputs:
-    """What an expansion (`robotdesc.expansion.result.Expanded`) read, and the package.xml
-    of every package it resolved."""
+def expansion_inputs(expanded: Expanded | None) -> RunInputs:
+    """What an expansion read, and the package.xml of every package it resolved."""
     if expanded is None:
         return RunInputs()
     inputs = RunInputs().adding([expanded.source], "the description being read")
@@ -41,28 +40,20 @@ def expansion_inputs(expanded: Any) -> RunInputs:
     return inputs
 
 
-def mesh_inputs(robot: Any, package_paths: Sequence[str] = (),
+def mesh_inputs(robot: Robot | None, package_paths: Sequence[str] = (),
                 package_map: Sequence[tuple[str, str]] = ()) -> RunInputs:
-    """The files the robot's `<mesh>` elements name (resolved leniently: every file a
-    reader of this robot might open is protected, whether or not it was allowed)."""
+    """The files the robot's `<mesh>` elements name (found by the one mesh locator with
+    absolute paths allowed: every file a reader of this robot might open is protected,
+    whether or not the config allows it)."""
     if robot is None:
         return RunInputs()
-    origin = robot.source or os.getcwd()
-    find = package_lookup(origin, tuple(package_paths), tuple(package_map))
-    fallback = os.path.dirname(os.path.abspath(origin))
-    paths = []
-    for ref in _mesh_refs(robot):
-        written_in = ref.where.span.path if ref.where else ""
-        base = os.path.dirname(os.path.abspath(written_in)) if written_in else fallback
-        found = resolve_mesh(ref.filename, base_dir=base, find_package=find,
-                             allow_absolute=True)
-        if found.ok:
-            paths.append(found.path)
+    meshes = MeshLocator.for_robot(robot, package_paths, package_map, allow_absolute=True)
+    paths = [path for path in map(meshes.path, _mesh_refs(robot)) if path is not None]
     return RunInputs().adding(paths, "a mesh of the robot")
 
 
 def run_inputs(source: str | None = None, *, config_path: str | None = None,
-               expanded: Any = None, robot: Any = None, package_paths: Sequence[str] = (),
+               expanded: Expanded | None = None, robot: Robot | None = None, package_paths: Sequence[str] = (),
                package_map: Sequence[tuple[str, str]] = (),
                extra: Iterable[tuple[str | None, str]] = ()) -> RunInputs:
     """Every input of a run on one description.
@@ -82,8 +73,8 @@ def run_inputs(source: str | None = None, *, config_path: str | None = None,
     return inputs
 
 
-def _mesh_refs(robot: Any) -> Iterable[MeshRef]:
+def _mesh_refs(robot: Robot) -> Iterable[MeshRef]:
     for link in robot.links:
-        for element in (*link.visuals, *link.collisions):
+        for element in link.visuals + link.collisions:
             if isinstance(element.geometry, MeshRef):
                 yield element.geometry

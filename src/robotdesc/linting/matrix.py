@@ -7,7 +7,7 @@ gives four variants, linted and reported apart as ``ur.urdf.xacro[ur_type=ur5e,h
 from __future__ import annotations
 
 import itertools
-from typing import Sequence
+from collections.abc import Sequence
 
 Variant = tuple[tuple[str, str], ...]
 

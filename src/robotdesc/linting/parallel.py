@@ -16,7 +16,7 @@ import traceback
 from dataclasses import dataclass
 from typing import Any, Mapping, Sequence
 
-from robotdesc.errors import InputError, RobotdescError
+from robotdesc.errors import InputError, OptionError, WorkerCrashed
 from robotdesc.linting.driver import lint_file
 from robotdesc.linting.inputs import run_inputs
 from robotdesc.linting.result import LintFailure, LintResult
@@ -25,10 +25,6 @@ from robotdesc.linting.targets import LintTarget
 log = logging.getLogger(__name__)
 
 Outcome = LintResult | LintFailure
-
-
-class WorkerCrashed(RobotdescError):
-    """Linting a target raised something that is not an input error (a bug, exit code 3)."""
 
 
 @dataclass(frozen=True)
@@ -41,9 +37,13 @@ class _Crash:
 
 
 def effective_jobs(jobs: int) -> int:
-    """`jobs`, where 0 means one per CPU."""
+    """`jobs`, where 0 means one per CPU.
+
+    Raises:
+        OptionError: `jobs` is negative.
+    """
     if jobs < 0:
-        raise ValueError(f"jobs must be 0 (one per CPU) or positive, got {jobs}")
+        raise OptionError("jobs", jobs, f"jobs must be 0 (one per CPU) or positive, got {jobs}")
     return jobs or os.cpu_count() or 1
 
 
@@ -77,15 +77,16 @@ def lint_targets(targets: Sequence[LintTarget], *, args: Mapping[str, str] | Non
         log.info("linting %d targets in %d worker processes", len(targets), jobs)
         with ProcessPoolExecutor(max_workers=jobs, mp_context=_context()) as pool:
             outcomes = list(pool.map(_lint_one, *zip(*work)))
+    results: list[Outcome] = []
     for outcome in outcomes:
         if isinstance(outcome, _Crash):
-            raise WorkerCrashed(f"{outcome.summary} (while linting {outcome.target})\n"
-                                f"{outcome.trace}")
-    return outcomes
+            raise WorkerCrashed(outcome.target, outcome.summary, outcome.trace)
+        results.append(outcome)
+    return results
 
 
-def _lint_one(target: LintTarget, args: dict, expand_options: Any, select: Any,
-              ignore: tuple, keep_exceptions: bool = False) -> Outcome | _Crash:
+def _lint_one(target: LintTarget, args: dict[str, str], expand_options: Any, select: Any,
+              ignore: tuple[str, ...], keep_exceptions: bool = False) -> Outcome | _Crash:
     """Lint one target; input errors become failures, bugs become `_Crash` in a worker."""
     log.info("linting %s", target.name())
     try:

@@ -1,4 +1,4 @@
-"""What linting one file produces, and the error raised when a rule crashes."""
+"""What linting one file produces."""
 
 from __future__ import annotations
 
@@ -8,16 +8,9 @@ from dataclasses import dataclass
 from typing import Any
 
 from robotdesc.diagnostics import Diagnostic, Severity
-from robotdesc.errors import InputError, RobotdescError
+from robotdesc.errors import InputError, RuleCrashed
 
-
-class RuleCrashed(RobotdescError):
-    """A rule's check raised: a bug in robotdesc (exit code 3), named after the rule."""
-
-    def __init__(self, code: str, name: str, target: str, cause: BaseException) -> None:
-        super().__init__(f"rule {code} ({name}) crashed on {target}: "
-                         f"{type(cause).__name__}: {cause}")
-        self.code, self.name, self.target = code, name, target
+__all__ = ["LintFailure", "LintResult", "RuleCrashed"]  # RuleCrashed: robotdesc.errors
 
 
 @dataclass(frozen=True)

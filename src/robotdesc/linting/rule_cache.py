@@ -16,12 +16,14 @@ import hashlib
 import json
 import logging
 import os
+from collections.abc import Iterable
 from pathlib import Path
-from typing import Any, Iterable
+from typing import Any
 
 from robotdesc._version import code_id, module_stamp
 from robotdesc.cache_dir import read_regular_file, write_entry
 from robotdesc.diagnostics import Finding
+from robotdesc.rules.registry import Rule
 from robotdesc.source import Provenance, Span
 
 log = logging.getLogger(__name__)
@@ -33,16 +35,26 @@ _FORMAT = 2  # 2: the key inside the entry
 MAX_ENTRY_BYTES = 16 << 20
 
 
-def is_cached(rule: Any) -> bool:
+#: A mesh file as the key sees it: path, size (bytes), mtime (ns), inode; None when missing.
+FileStat = tuple[str, int | None, int | None, int | None]
+#: A span as stored: path, line, column.
+SpanRecord = list[str | int]
+#: A stored finding (JSON object): message, element, fix, and where (span, macro stack).
+FindingRecord = dict[str, str | None | list[SpanRecord | list[SpanRecord]]]
+
+
+def is_cached(rule: Rule) -> bool:
+    """Whether the rule's findings are cached (it builds a Pinocchio model)."""
     return CACHED_NEED in rule.needs
 
 
-def rule_key(rule: Any, options: Any, document: bytes, mesh_files: Iterable[str],
+def rule_key(rule: Rule, options: object, document: bytes, mesh_files: Iterable[str],
              source: str = "") -> str:
     """The key of one rule's findings on one expanded document read from `source` (the
-    findings point into it: two copies of one URDF have different keys)."""
+    findings point into it: two copies of one URDF have different keys); `options` enter
+    by their repr."""
 
-    stats = []
+    stats: list[FileStat] = []
     for path in sorted(set(mesh_files)):
         try:
             info = os.stat(path)
@@ -86,18 +98,19 @@ def store(cache_dir: Path | None, key: str, findings: list[Finding]) -> None:
         log.warning("rule cache: cannot write in %s (%s)", folder, exc)
 
 
-def _span_record(span: Span) -> list:
+def _span_record(span: Span) -> SpanRecord:
     return [span.path, span.line, span.col]
 
 
-def _record(finding: Finding) -> dict:
+def _record(finding: Finding) -> FindingRecord:
     where = finding.where
     return {"message": finding.message, "element": finding.element, "fix": finding.fix,
             "where": None if where is None else
             [_span_record(where.span), [_span_record(s) for s in where.macro_stack]]}
 
 
-def _finding(item: dict) -> Finding:
+def _finding(item: dict[str, Any]) -> Finding:
+    """A stored finding (JSON, read back: shapes checked by the callers' except clause)."""
     where = item["where"]
     provenance = None if where is None else Provenance(
         Span(*where[0]), tuple(Span(*s) for s in where[1]))

@@ -8,7 +8,9 @@ tie `ignore` wins. So `select = ["J"]` with `ignore = ["J1"]` runs J2xx only, an
 
 from __future__ import annotations
 
-from typing import Any, Iterable, Sequence
+from collections.abc import Iterable, Sequence
+
+from robotdesc.rules.registry import Rule
 
 _EXACT = 1000  # specificity of a full code or a rule name
 
@@ -37,26 +39,25 @@ def is_selected(code: str, name: str, select: Sequence[str] | None,
     return chosen > 0 and chosen > best_match(ignore, code, name)
 
 
-def select_rules(rules: Iterable[Any], select: Sequence[str] | None,
-                 ignore: Sequence[str] = ()) -> list[Any]:
-    """The rules (objects with `code` and `name`) that run, in their given order.
+def select_rules(rules: Iterable[Rule], select: Sequence[str] | None,
+                 ignore: Sequence[str] = ()) -> list[Rule]:
+    """The rules that run, in their given order.
 
     An opt-in rule (`opt_in` true) runs only when a selector other than "ALL" selects it.
     """
     return [r for r in rules if is_selected(r.code, r.name, select, ignore)
-            and (not getattr(r, "opt_in", False)
-                 or best_match(select or (), r.code, r.name) > 1)]
+            and (not r.opt_in or best_match(select or (), r.code, r.name) > 1)]
 
 
-def unknown_selectors(selectors: Iterable[str], rules: Iterable[Any]) -> list[str]:
+def unknown_selectors(selectors: Iterable[str], rules: Iterable[Rule]) -> list[str]:
     """The selectors that match none of `rules` ("ALL" always matches)."""
-    rules = list(rules)
+    known = list(rules)
     return [s for s in selectors
             if s.strip().upper() != "ALL" and not any(specificity(s, r.code, r.name)
-                                                      for r in rules)]
+                                                      for r in known)]
 
 
-def find_rule(rules: Iterable[Any], code_or_name: str) -> Any | None:
+def find_rule(rules: Iterable[Rule], code_or_name: str) -> Rule | None:
     """The rule among `rules` with this code (case-insensitive) or name, or None."""
     key = code_or_name.strip()
     return next((r for r in rules if r.code == key.upper() or r.name == key), None)

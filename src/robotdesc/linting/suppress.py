@@ -12,8 +12,8 @@ import functools
 import logging
 import os
 import re
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Iterable, Sequence
 
 from robotdesc.diagnostics import Diagnostic
 

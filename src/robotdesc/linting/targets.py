@@ -22,13 +22,16 @@ import re
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Literal, TypeAlias
 
 from robotdesc.config import Config, TargetSpec, discover_config, find_config_file, load_config
 from robotdesc.errors import InputError
 from robotdesc.expansion.packages import crawl_packages, enclosing_package
 from robotdesc.linting.matrix import Variant, matrix_variants, variant_label
 from robotdesc.source import Span
+
+if TYPE_CHECKING:
+    from lxml import etree
 
 log = logging.getLogger(__name__)
 
@@ -210,8 +213,8 @@ def description_kind(path: str, packages: dict[str, str] | None = None) -> Kind:
 # --- helpers ------------------------------------------------------------------------------
 
 
-#: An lxml element (lxml ships no type information).
-XmlElement = Any
+#: An lxml element (lxml is imported when a file is read).
+XmlElement: TypeAlias = "etree._Element"
 
 
 def is_srdf(path: str, root: XmlElement | None = None) -> bool:

@@ -22,14 +22,14 @@ _EXPORTS = {
     "volume_integrals": "mass",
     "primitive_properties": "primitives",
     "MeshResolution": "resolve", "ResolveProblem": "resolve", "ResolveProblemKind": "resolve",
-    "resolve_mesh": "resolve",
+    "resolve_mesh": "resolve", "MeshLocator": "locate",
     "analyze_mesh_file": "analyze", "summarize": "summary",
     "MeshError": "errors", "MeshErrorKind": "errors", "MeshLimits": "errors",
 }
 
 __all__ = [
     "LoadedMesh", "MassMethod", "MassProperties", "MeshCache", "MeshError", "MeshErrorKind",
-    "MeshHealth", "MeshLimits", "MeshResolution", "MeshSummary", "ResolveProblem",
+    "MeshHealth", "MeshLimits", "MeshLocator", "MeshResolution", "MeshSummary", "ResolveProblem",
     "ResolveProblemKind", "analyze_mesh_file", "combine", "default_cache_dir",
     "link_mass_properties", "load_mesh", "mesh_health", "primitive_properties",
     "resolve_mesh", "summarize", "volume_integrals",

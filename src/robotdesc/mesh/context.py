@@ -14,24 +14,35 @@ Plain Python: when every mesh summary comes from the cache, nothing here imports
 from __future__ import annotations
 
 import logging
-import os
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from dataclasses import dataclass
 
-from robotdesc.expansion.packages import enclosing_package, package_lookup
+from robotdesc.expansion.packages import package_lookup
 from robotdesc.mesh.analyze import analyze_mesh_file
 from robotdesc.mesh.cache import MeshCache, default_cache_dir
 from robotdesc.mesh.errors import DEFAULT_LIMITS, MeshError, MeshLimits
+from robotdesc.mesh.locate import MeshLocator
 from robotdesc.mesh.primitives import primitive_properties
 from robotdesc.mesh.properties import MassProperties, Vec3, combine, moved_bounds
 from robotdesc.mesh.records import MassMethod, MeshSummary
-from robotdesc.mesh.resolve import MeshResolution, resolve_mesh
+from robotdesc.mesh.resolve import MeshResolution, PackageLookup
 from robotdesc.mesh.settings import MeshSettings
-from robotdesc.model.elements import Box, Collision, Link, MeshRef, Robot, Sphere, Visual
+from robotdesc.model.elements import (
+    Box,
+    Capsule,
+    Collision,
+    Cylinder,
+    Link,
+    MeshRef,
+    Robot,
+    Sphere,
+    Visual,
+)
 
 log = logging.getLogger(__name__)
 
-PackageLookup = Callable[[str], "str | None"]
+#: One `<mesh>` of the robot: (link, "visual" | "collision", index, element, reference).
+MeshUse = tuple[Link, str, int, Visual | Collision, MeshRef]
 
 #: Methods whose mass properties are those of the surface itself (not a hull estimate).
 TRUSTED_METHODS = frozenset({MassMethod.EXACT, MassMethod.FLIPPED, MassMethod.HOLES_CAPPED})
@@ -85,7 +96,8 @@ class LinkGeometry:
     @property
     def trusted(self) -> bool:
         """Complete and exact enough to judge a declared inertia against."""
-        return self.complete and not self.estimated and self.properties.volume > 0
+        return (self.properties is not None and not self.unmeasured and not self.estimated
+                and self.properties.volume > 0)
 
 
 class MeshContext:
@@ -106,11 +118,11 @@ class MeshContext:
         self._package_lookup = find_package
         self._cache = cache
         self._limits = limits
-        self._lookups: dict[tuple, MeshLookup] = {}
+        self._lookups: dict[tuple[str, str, tuple[float, ...]], MeshLookup] = {}
         self._links: dict[tuple[str, str | None], LinkGeometry] = {}
-        self._roots: dict[str, str | None] = {}
-        self._base_dirs: dict[str, str] = {}
-        self._meshes: tuple | None = None
+        #: where each `<mesh>` leads: the one locator, under the config's mesh policy
+        self.locator = MeshLocator.with_settings(robot, find_package, settings)
+        self._meshes: tuple[MeshUse, ...] | None = None
         self._by_ref: dict[int, tuple[MeshRef, MeshLookup]] = {}  # every rule asks again
 
     def find_package(self, name: str) -> str | None:
@@ -134,21 +146,17 @@ class MeshContext:
         seen = self._by_ref.get(id(ref))
         if seen is not None and seen[0] is ref:
             return seen[1]
-        base_dir = self._base_dir(ref)
-        key = (ref.filename, base_dir, tuple(ref.scale))
+        key = (ref.filename, self.locator.base_dir(ref), tuple(ref.scale))
         found = self._lookups.get(key)
         if found is None:
-            found = self._lookup(ref, base_dir)
+            found = self._lookup(ref)
             self._lookups[key] = found
         self._by_ref[id(ref)] = (ref, found)  # holding `ref` keeps its id unique
         return found
 
-    def _lookup(self, ref: MeshRef, base_dir: str) -> MeshLookup:
-        resolution = resolve_mesh(ref.filename, base_dir=base_dir,
-                                  find_package=self._package_lookup,
-                                  allow_absolute=self.settings.allow_absolute_paths,
-                                  relative_root=self._package_root(base_dir))
-        if not resolution.ok:
+    def _lookup(self, ref: MeshRef) -> MeshLookup:
+        resolution = self.locator.locate(ref)
+        if not resolution.ok or resolution.path is None:
             return MeshLookup(ref, resolution)
         try:
             summary = analyze_mesh_file(resolution.path, ref.scale, self._limits, self._cache)
@@ -156,35 +164,20 @@ class MeshContext:
             return MeshLookup(ref, resolution, error=error)
         return MeshLookup(ref, resolution, summary)
 
-    def _base_dir(self, ref: MeshRef) -> str:
-        """The folder a relative filename is taken from: that of the file holding the
-        `<mesh>` element (a xacro file for expanded input), else the robot's source."""
-        written_in = ref.where.span.path if ref.where else ""
-        found = self._base_dirs.get(written_in)
-        if found is None:
-            if written_in and os.path.isfile(written_in):
-                found = os.path.dirname(os.path.abspath(written_in))
-            else:
-                found = os.path.dirname(os.path.abspath(self.robot.source or "."))
-            self._base_dirs[written_in] = found
-        return found
-
-    def _package_root(self, directory: str) -> str | None:
-        if directory not in self._roots:
-            found = enclosing_package(directory)
-            self._roots[directory] = str(found[1]) if found else None
-        return self._roots[directory]
-
     # --- all meshes ---------------------------------------------------------------------
 
-    def meshes(self) -> Iterator[tuple[Link, str, int, Visual | Collision, MeshRef]]:
+    def meshes(self) -> Iterator[MeshUse]:
         """Every `<mesh>`: (link, "visual" | "collision", index, element, reference)."""
         if self._meshes is None:
-            self._meshes = tuple(
-                (link, kind, index, shape, shape.geometry)
-                for link in self.robot.links
-                for kind, shapes in (("visual", link.visuals), ("collision", link.collisions))
-                for index, shape in enumerate(shapes) if isinstance(shape.geometry, MeshRef))
+            found: list[MeshUse] = []
+            for link in self.robot.links:
+                for kind in ("visual", "collision"):
+                    shapes: tuple[Visual | Collision, ...] = (
+                        link.visuals if kind == "visual" else link.collisions)
+                    for index, shape in enumerate(shapes):
+                        if isinstance(shape.geometry, MeshRef):
+                            found.append((link, kind, index, shape, shape.geometry))
+            self._meshes = tuple(found)
         return iter(self._meshes)
 
     # --- one link -----------------------------------------------------------------------
@@ -263,12 +256,13 @@ def _shapes(link: Link, kind: str) -> tuple[Visual | Collision, ...]:
     return tuple(s for s in shapes if s.geometry is not None or s.where is not None)
 
 
-def _primitive_half_extent(geometry) -> Vec3:
+def _primitive_half_extent(geometry: Box | Cylinder | Sphere | Capsule) -> Vec3:
+    """Half the extent (m) of a primitive's bounds along x, y and z of its own frame."""
     if isinstance(geometry, Box):
         x, y, z = geometry.size
         return (x / 2, y / 2, z / 2)
-    if isinstance(geometry, Sphere):
-        return (geometry.radius,) * 3  # type: ignore[return-value]
     r = geometry.radius
-    half_length = geometry.length / 2 + (r if type(geometry).__name__ == "Capsule" else 0.0)
+    if isinstance(geometry, Sphere):
+        return (r, r, r)
+    half_length = geometry.length / 2 + (r if isinstance(geometry, Capsule) else 0.0)
     return (r, r, half_length)

@@ -1,49 +1,17 @@
-"""Why a mesh file could not be used, and the size limits a mesh file must respect.
+"""The size limits a mesh file must respect.
 
-Plain Python (no numpy): the mesh cache stores and serves these errors on warm runs.
+`MeshError` and `MeshErrorKind` (why a mesh file could not be used) live in
+`robotdesc.errors` with every other error; they are re-exported here for the mesh modules
+that import them from this module. Plain Python (no numpy).
 """
 
 from __future__ import annotations
 
-import enum
 from dataclasses import dataclass
 
-from robotdesc.errors import InputError
-from robotdesc.source import Span
+from robotdesc.errors import MeshError, MeshErrorKind
 
-
-class MeshErrorKind(str, enum.Enum):
-    """Why a mesh file could not be read."""
-
-    LFS_POINTER = "lfs-pointer"
-    TRUNCATED = "truncated"
-    TOO_LARGE = "too-large"
-    NON_FINITE = "non-finite"
-    BAD_INDEX = "bad-index"
-    MALFORMED = "malformed"
-    EMPTY = "empty"
-    UNSUPPORTED = "unsupported-format"
-    BAD_SCALE = "bad-scale"
-    UNREADABLE = "unreadable"
-
-
-class MeshError(InputError):
-    """A mesh file is malformed, oversized or not a mesh at all.
-
-    Args:
-        kind: the machine-readable reason.
-        message: what is wrong, in a user's words (the file name is prepended).
-        path: the mesh file.
-        span: where the `<mesh>` element is, when the caller knows it.
-    """
-
-    def __init__(self, kind: MeshErrorKind, message: str, path: str = "",
-                 span: Span | None = None) -> None:
-        text = f"{path}: {message}" if path else message
-        super().__init__(text, span)
-        self.kind = kind
-        self.path = path
-        self.detail = message
+__all__ = ["DEFAULT_LIMITS", "MeshError", "MeshErrorKind", "MeshLimits"]
 
 
 @dataclass(frozen=True)

@@ -45,7 +45,7 @@ FORMATS = {"stl": "stl", "dae": "collada", "obj": "trimesh", "ply": "trimesh",
            "glb": "trimesh", "gltf": "trimesh"}
 _TEXT_FORMATS = {"dae", "obj", "gltf"}
 #: A COLLADA `<bind_material>` (its material bindings only; no geometry is in it).
-_BIND_MATERIAL = re.compile(rb"<bind_material\b(?:[^>]*/>|.*?</bind_material\s*>)", re.S)
+_BIND_MATERIAL = re.compile(rb"<bind_material\b(?:[^>]*/>|.*?</bind_material\s*>)", re.DOTALL)
 
 
 @dataclass(frozen=True, eq=False)

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from robotdesc.errors import GeometryError
 from robotdesc.mesh.properties import MassProperties, combine, link_mass_properties
 from robotdesc.spatial import Mat3, Vec3
 
@@ -68,11 +69,12 @@ class VolumeIntegrals:
         """Mass properties at density 1 kg/m^3; requires a positive volume.
 
         Raises:
-            ValueError: when the signed volume is not positive (flip or repair first).
+            GeometryError: the signed volume is not positive (flip or repair first); also
+                a ValueError.
         """
         v, sx, sy, sz, xx, yy, zz, xy, yz, zx = self.values
         if not v > 0:
-            raise ValueError(f"signed volume {v:g} m^3 is not positive")
+            raise GeometryError(f"signed volume {v:g} m^3 is not positive", shape="mesh")
         cx, cy, cz = sx / v, sy / v, sz / v
         ixx = yy + zz - v * (cy * cy + cz * cz)
         iyy = zz + xx - v * (cz * cz + cx * cx)
@@ -111,7 +113,8 @@ def reference_point(triangles: np.ndarray, samples: int = 1024) -> np.ndarray:
     the mesh's bounding box, which is all the integral needs for precision."""
     vertices = triangles.reshape(-1, 3)
     step = max(1, len(vertices) // samples)
-    return np.asarray(vertices[::step], dtype=np.float64).mean(axis=0)
+    mean: np.ndarray = np.asarray(vertices[::step], dtype=np.float64).mean(axis=0)
+    return mean
 
 
 def bounds(triangles: np.ndarray, chunk: int = 1 << 18) -> tuple[Vec3, Vec3]:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 
+from robotdesc.errors import GeometryError
 from robotdesc.mesh.properties import MassProperties
 from robotdesc.model.elements import Box, Capsule, Cylinder, Sphere
 
@@ -55,7 +56,7 @@ def primitive_properties(geometry: Primitive) -> MassProperties:
     """Mass properties at density 1 of a URDF `<box>`, `<cylinder>`, `<sphere>` or `<capsule>`.
 
     Raises:
-        ValueError: a dimension is negative or not finite.
+        GeometryError: a dimension is negative or not finite (also a ValueError).
     """
     if isinstance(geometry, Box):
         dims = tuple(geometry.size)
@@ -64,8 +65,9 @@ def primitive_properties(geometry: Primitive) -> MassProperties:
     else:
         dims = (geometry.radius, geometry.length)
     if not all(math.isfinite(d) and d >= 0 for d in dims):
-        raise ValueError(f"{type(geometry).__name__.lower()} dimensions {dims} must be finite "
-                         "and not negative")
+        shape = type(geometry).__name__.lower()
+        raise GeometryError(f"{shape} dimensions {dims} must be finite and not negative",
+                            shape=shape, dimensions=tuple(float(d) for d in dims))
     if isinstance(geometry, Box):
         return box_properties(*dims)
     if isinstance(geometry, Sphere):

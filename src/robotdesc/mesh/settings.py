@@ -5,6 +5,8 @@ from __future__ import annotations
 import typing
 from dataclasses import dataclass
 
+from robotdesc.errors import SettingError
+
 
 @dataclass(frozen=True)
 class MeshSettings:
@@ -19,6 +21,10 @@ class MeshSettings:
             description works only on the machine that wrote it).
         collision_triangle_budget: the most triangles one collision mesh should have.
         cache: keep mesh summaries in the mesh cache (docs/meshes.md); off: recompute.
+
+    Raises:
+        SettingError: a value out of range (also a ValueError; the config reader adds
+            the file and line).
     """
 
     inertia_source: typing.Literal["collision", "visual"] = "collision"
@@ -30,9 +36,12 @@ class MeshSettings:
 
     def __post_init__(self) -> None:
         if self.expected_mass is not None and not self.expected_mass > 0:
-            raise ValueError(f"expected-mass must be positive, got {self.expected_mass}")
+            raise SettingError("expected-mass", self.expected_mass,
+                               f"expected-mass must be positive, got {self.expected_mass}")
         if not 0 <= self.mass_tolerance < 1:
-            raise ValueError(f"mass-tolerance must be in [0, 1), got {self.mass_tolerance}")
+            raise SettingError("mass-tolerance", self.mass_tolerance,
+                               f"mass-tolerance must be in [0, 1), got {self.mass_tolerance}")
         if self.collision_triangle_budget < 1:
-            raise ValueError("collision-triangle-budget must be at least 1, got "
-                             f"{self.collision_triangle_budget}")
+            raise SettingError("collision-triangle-budget", self.collision_triangle_budget,
+                               "collision-triangle-budget must be at least 1, got "
+                               f"{self.collision_triangle_budget}")

@@ -72,10 +72,16 @@ def _render_options(rule_: Rule) -> list[str]:
             "|--------|------|---------|-------------|"]
     for field in fields:
         default = field.default if field.default is not dataclasses.MISSING else "(required)"
-        kind = field.type if isinstance(field.type, str) else getattr(field.type, "__name__", "")
-        rows.append(f"| `{field.name}` | {kind} | `{default!r}` | "
+        rows.append(f"| `{field.name}` | {_type_name(field.type)} | `{default!r}` | "
                     f"{described.get(field.name, '')} |")
     return rows
+
+
+def _type_name(annotation: object) -> str:
+    """An option's type as written (annotations are strings in the rule modules)."""
+    if isinstance(annotation, str):
+        return annotation
+    return annotation.__name__ if isinstance(annotation, type) else ""
 
 
 def _attribute_descriptions(options: type) -> dict[str, str]:

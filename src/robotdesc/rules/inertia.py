@@ -275,7 +275,7 @@ def inertia_triangle_inequality(robot: Robot, ctx: RuleContext) -> Iterator[Find
     </robot>
     ```
     """
-    tolerance = ctx.options.tolerance if ctx.options else TriangleOptions.tolerance
+    tolerance = ctx.options_as(TriangleOptions).tolerance
     for link in robot.links:
         inertial = link.inertial
         if inertial is None or inertial.inertia is None or not has_mass(link):
@@ -341,7 +341,7 @@ def implausibly_small_inertia(robot: Robot, ctx: RuleContext) -> Iterator[Findin
     </robot>
     ```
     """
-    density = ctx.options.max_density if ctx.options else MAX_MATERIAL_DENSITY
+    density = ctx.options_as(TinyInertiaOptions).max_density
     for link in robot.links:
         inertial = link.inertial
         if inertial is None or inertial.inertia is None or not has_mass(link):
@@ -420,7 +420,7 @@ def root_link_inertia(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     </robot>
     ```
     """
-    share = ctx.options.min_share if ctx.options else RootInertiaOptions.min_share
+    share = ctx.options_as(RootInertiaOptions).min_share
     if not is_dynamics_model(robot):
         return
     total = sum(mass_of(link) for link in robot.links)

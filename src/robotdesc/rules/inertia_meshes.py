@@ -2,7 +2,9 @@
 properties of the link's collision (or visual) geometry at uniform density.
 
 These rules need meshes: the lint driver hands them a `robotdesc.mesh.context.MeshContext`
-as `ctx.meshes`. numpy is imported inside the checks, so registering them costs nothing.
+as `ctx.meshes` (typed as what the rules read of it,
+`robotdesc.inertia.mesh_access.MeshAccess`). numpy is imported inside the checks, so
+registering them costs nothing.
 """
 
 from __future__ import annotations
@@ -10,11 +12,12 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, cast
+from typing import TYPE_CHECKING
 
 from robotdesc.diagnostics import Finding, Severity
 from robotdesc.inertia.links import has_mass, link_element, mass_of
-from robotdesc.mesh.context import LinkGeometry, MeshContext
+from robotdesc.inertia.mesh_access import MeshAccess
+from robotdesc.mesh.context import LinkGeometry
 from robotdesc.mesh.properties import MassProperties, Vec3
 from robotdesc.model.elements import Inertial, Link, Robot
 from robotdesc.rules.registry import RuleContext, rule
@@ -32,9 +35,12 @@ Axis = tuple[str, float, float]
 Bounds = tuple[Vec3, Vec3]
 
 
-def _meshes(ctx: RuleContext) -> MeshContext:
-    """The lint's mesh context (the driver hands one to every rule that needs meshes)."""
-    return cast(MeshContext, ctx.meshes)
+def _meshes(ctx: RuleContext) -> MeshAccess:
+    """The lint's mesh access; callers have checked that there is one (the driver hands
+    one to every rule that needs meshes)."""
+    if ctx.meshes is None:
+        raise ValueError("this rule needs meshes and was given no mesh access")
+    return ctx.meshes
 
 
 def _inertial(link: Link) -> Inertial:
@@ -431,7 +437,7 @@ def inertia_differs_from_geometry(robot: Robot, ctx: RuleContext) -> Iterator[Fi
     </link>
     ```
     """
-    factor: float = ctx.options.factor if ctx.options else InertiaMismatchOptions.factor
+    factor = ctx.options_as(InertiaMismatchOptions).factor
     tolerance = DeviationOptions.tolerance
     links = {link.name: link for link in robot.links}
 
@@ -529,7 +535,7 @@ def inertia_deviates_from_uniform_density(robot: Robot, ctx: RuleContext) -> Ite
     </link>
     ```
     """
-    tolerance: float = ctx.options.tolerance if ctx.options else DeviationOptions.tolerance
+    tolerance = ctx.options_as(DeviationOptions).tolerance
     factor = InertiaMismatchOptions.factor
     yield from _mismatch_findings(
         robot, ctx, tolerance,
@@ -586,7 +592,7 @@ def center_of_mass_outside_geometry(robot: Robot, ctx: RuleContext) -> Iterator[
     </link>
     ```
     """
-    margin: float = ctx.options.margin if ctx.options else CenterOfMassOptions.margin
+    margin = ctx.options_as(CenterOfMassOptions).margin
     if ctx.meshes is None:
         return
     for link in robot.links:
@@ -680,7 +686,7 @@ def implausible_density(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     </link>
     ```
     """
-    options: DensityOptions = ctx.options or DensityOptions()
+    options = ctx.options_as(DensityOptions)
     if ctx.meshes is None:
         return
     for link in robot.links:

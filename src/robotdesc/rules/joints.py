@@ -331,7 +331,7 @@ def axis_not_normalized(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     </robot>
     ```
     """
-    tolerance = (ctx.options or AxisOptions()).tolerance
+    tolerance = ctx.options_as(AxisOptions).tolerance
     for joint in robot.joints:
         if joint.type not in AXIS_TYPES or joint.axis is None or not any(joint.axis):
             continue

@@ -170,7 +170,7 @@ def mass_ratio_across_joint(robot: Robot, ctx: RuleContext) -> Iterator[Finding]
     </robot>
     ```
     """
-    options = ctx.options or MassRatioOptions()
+    options = ctx.options_as(MassRatioOptions)
     head = tree.body_of(robot)
     masses = tree.body_masses(robot)
     for joint in robot.joints:
@@ -262,7 +262,7 @@ def mirrored_joints_differ(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     </robot>
     ```
     """
-    options = ctx.options or MirrorOptions()
+    options = ctx.options_as(MirrorOptions)
     families: dict[tuple[str, str], list[tuple[str, str, str]]] = {}
     for first, second in mirror_pairs(joint.name for joint in robot.joints):
         a, b = robot.joint(first), robot.joint(second)
@@ -405,7 +405,7 @@ def mirrored_masses_differ(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     </robot>
     ```
     """
-    options = ctx.options or MirrorMassOptions()
+    options = ctx.options_as(MirrorMassOptions)
     for first, second in mirror_pairs(link.name for link in robot.links):
         a, b = robot.link(first), robot.link(second)
         if a is None or b is None:

@@ -9,12 +9,20 @@ from __future__ import annotations
 
 import dataclasses
 import inspect
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
-from typing import Any, Callable, Iterable, Iterator
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from robotdesc.diagnostics import Finding, Severity
-from robotdesc.expansion.result import ExpansionNote, MacroRecursion  # noqa: F401 (re-export)
+from robotdesc.expansion.result import ExpansionNote, MacroRecursion
+from robotdesc.inertia.mesh_access import MeshAccess
 from robotdesc.model.elements import Robot
+
+if TYPE_CHECKING:
+    from _typeshed import DataclassInstance
+
+#: A rule's options: an instance of the frozen dataclass it registered (`rule(options=...)`).
+OptionsT = TypeVar("OptionsT", bound="DataclassInstance")
 
 
 @dataclass(frozen=True)
@@ -48,17 +56,33 @@ class RuleContext:
     """What a check sees besides the robot.
 
     Attributes:
-        options: the rule's options (an instance of its options dataclass, or None).
+        options: the rule's options (an instance of its options dataclass, or None: its
+            defaults); a check reads them with `options_as`.
         expansion: facts from the xacro expansion (empty for plain URDF).
-        meshes: mesh access for rules that declare `needs={"meshes"}` (None otherwise).
+        meshes: mesh access for rules that declare `needs={"meshes"}` (None otherwise): a
+            `robotdesc.mesh.context.MeshContext` in a lint.
         document: the source document for rules that declare `needs={"document"}`
             (None otherwise).
     """
 
-    options: Any = None
+    options: DataclassInstance | None = None
     expansion: ExpansionFacts = field(default_factory=ExpansionFacts)
-    meshes: Any = None
+    meshes: MeshAccess | None = None
     document: SourceDocument | None = None
+
+    def options_as(self, kind: type[OptionsT]) -> OptionsT:
+        """The rule's options as its options dataclass `kind` (its defaults when none were
+        given).
+
+        Raises:
+            TypeError: the options are of another type (a bug: the rule registered `kind`).
+        """
+        if self.options is None:
+            return kind()
+        if not isinstance(self.options, kind):
+            raise TypeError(f"rule options of type {type(self.options).__name__}, "
+                            f"expected {kind.__name__}")
+        return self.options
 
 
 CheckFunction = Callable[[Robot, RuleContext], Iterable[Finding]]
@@ -85,7 +109,7 @@ class Rule:
     family: str
     severity: Severity
     check: CheckFunction
-    options: type | None = None
+    options: type[DataclassInstance] | None = None
     needs: frozenset[str] = frozenset()
     opt_in: bool = False
 
@@ -98,6 +122,9 @@ class Rule:
         return self.doc.split("\n\n", 1)[0].replace("\n", " ").strip()
 
     def default_options(self) -> Any:
+        """An instance of its options dataclass with the defaults (None: it has none).
+        Typed Any: `config.validate` hands it to `dataclasses.replace` after checking
+        `options`."""
         return self.options() if self.options else None
 
     def option_fields(self) -> list[dataclasses.Field[Any]]:
@@ -116,7 +143,7 @@ FAMILIES: dict[str, str] = {
 
 
 def rule(code: str, name: str, *, family: str, severity: Severity | str = Severity.ERROR,
-         options: type | None = None, needs: Iterable[str] = (),
+         options: type[DataclassInstance] | None = None, needs: Iterable[str] = (),
          opt_in: bool = False) -> Callable[[CheckFunction], CheckFunction]:
     """Register `check` under `code`; used as a decorator."""
 

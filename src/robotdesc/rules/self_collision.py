@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from robotdesc.diagnostics import Finding, Severity
+from robotdesc.inertia.mesh_access import MeshAccess
 from robotdesc.kinematics.build import KinematicBuildError
 from robotdesc.kinematics.configuration import (
     default_configuration,
@@ -295,6 +296,6 @@ def links_always_in_contact(robot: Robot, ctx: RuleContext) -> Iterator[Finding]
 def mesh_path(robot: Robot, ctx: RuleContext) -> MeshPath:
     """`<mesh>` -> file, through the mesh layer: the lint's mesh context (it knows the
     --package-path folders and the config), or a new one for the robot's own file."""
-    meshes = ctx.meshes if isinstance(ctx.meshes, MeshContext) else \
+    meshes: MeshAccess = ctx.meshes if ctx.meshes is not None else \
         MeshContext.for_file(robot, robot.source or ".", MeshSettings())
     return lambda mesh: meshes.lookup(mesh).resolution.path

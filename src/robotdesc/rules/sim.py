@@ -6,14 +6,15 @@ MuJoCo (the optional `robotdesc[sim]` extra) is imported only when the rule runs
 
 from __future__ import annotations
 
-import os
 from collections.abc import Iterator
-from typing import Literal
 from dataclasses import dataclass
+from typing import Literal
 
 from robotdesc.diagnostics import Finding, Severity
+from robotdesc.mesh.locate import MeshLocator
 from robotdesc.model.elements import Robot
 from robotdesc.rules.registry import RuleContext, rule
+from robotdesc.sim.scene import SceneOptions
 
 FAMILY = "sim"
 
@@ -73,17 +74,14 @@ def fails_settle_test(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """
     if ctx.meshes is None:  # run outside the lint driver without mesh access: cannot simulate
         return
-    from robotdesc.sim.convert import SceneOptions
     from robotdesc.sim.hold import HoldOptions
-    from robotdesc.sim.load import mesh_assets_for
     from robotdesc.sim.meshes import MeshAssets
     from robotdesc.sim.run import SimOptions, settle_robot
     from robotdesc.sim.settle import SettleOptions
 
-    options = ctx.options or SettleRuleOptions()
-    find_package = getattr(ctx.meshes, "find_package", None)
-    meshes = (MeshAssets(find_package, _base_dir(robot)) if callable(find_package)
-              else mesh_assets_for(robot.source))
+    options = ctx.options_as(SettleRuleOptions)
+    meshes = MeshAssets(MeshLocator.with_settings(robot, ctx.meshes.find_package,
+                                                  ctx.meshes.settings))
     settings = SimOptions(settle=SettleOptions(seconds=options.seconds,
                                                hold=HoldOptions(mode=options.hold)),
                           scene=SceneOptions(drop_height=options.drop_height))
@@ -95,7 +93,3 @@ def fails_settle_test(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
         yield Finding(f"settle test, {check.name} check"
                       + (f" at t={check.time:.3f} s" if check.time else "")
                       + f": {check.message}", where, element)
-
-
-def _base_dir(robot: Robot) -> str:
-    return os.path.dirname(os.path.abspath(robot.source)) if robot.source else os.getcwd()

@@ -63,7 +63,7 @@ def deep_macro_recursion(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     <xacro:wheels lo="0" hi="212"/>
     ```
     """
-    limit = (ctx.options or MacroRecursionOptions()).max_depth
+    limit = ctx.options_as(MacroRecursionOptions).max_depth
     for recursion in ctx.expansion.macro_recursion:
         if recursion.depth > limit:
             called = f" (called from {recursion.called_at})" if recursion.called_at else ""

@@ -6,16 +6,12 @@ from __future__ import annotations
 import logging
 from types import ModuleType
 
-from robotdesc.errors import InputError
+from robotdesc.errors import SimUnavailable
 
 #: The requirement of the `sim` extra (pyproject: `[project.optional-dependencies] sim`).
 MUJOCO_REQUIREMENT = "mujoco>=3.3"
 INSTALL_HINT = ('robotdesc sim needs MuJoCo, an optional extra: pip install ".[sim]" '
                 f'(or pip install "{MUJOCO_REQUIREMENT}")')
-
-
-class SimUnavailable(InputError):
-    """A physics engine is not installed, so the physics checks cannot run (exit 2)."""
 
 
 def import_mujoco() -> ModuleType:
@@ -27,7 +23,7 @@ def import_mujoco() -> ModuleType:
     try:
         import mujoco
     except ImportError:
-        raise SimUnavailable(INSTALL_HINT) from None
+        raise SimUnavailable("mujoco", MUJOCO_REQUIREMENT, INSTALL_HINT) from None
     global _QUIETED
     if not _QUIETED:  # MuJoCo's warnings go to logging, not to stderr and MUJOCO_LOG.TXT
         mujoco.set_mju_user_warning(_log_warning)
@@ -59,5 +55,5 @@ def import_dartpy() -> ModuleType:
     try:
         import dartpy
     except ImportError:
-        raise SimUnavailable(DART_INSTALL_HINT) from None
+        raise SimUnavailable("dart", DART_REQUIREMENT, DART_INSTALL_HINT) from None
     return dartpy

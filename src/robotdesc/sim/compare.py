@@ -15,11 +15,12 @@ import time
 from dataclasses import dataclass
 from typing import Any, Callable, Mapping, Sequence
 
+from robotdesc.errors import SimOptionError
 from robotdesc.model.elements import Robot
-from robotdesc.sim.convert import SceneOptions
 from robotdesc.sim.engine import Engine, EngineScene
 from robotdesc.sim.hold import HoldOptions
 from robotdesc.sim.meshes import MeshAssets
+from robotdesc.sim.scene import SceneOptions
 from robotdesc.sim.variants import COLLISION_MODES, generated_parts, visual_as_collision
 
 log = logging.getLogger(__name__)
@@ -108,13 +109,14 @@ def parse_variants(text: str) -> tuple[str, ...]:
     """"visual,generated" -> ("visual", "generated").
 
     Raises:
-        ValueError: an unknown variant, or fewer than one.
+        SimOptionError: an unknown variant, or fewer than one.
     """
     variants = tuple(part.strip() for part in text.split(",") if part.strip())
     unknown = [v for v in variants if v not in COLLISION_MODES]
     if not variants or unknown:
-        raise ValueError(f"--compare takes a comma-separated list of {', '.join(COLLISION_MODES)}"
-                         + (f"; unknown: {', '.join(unknown)}" if unknown else ""))
+        raise SimOptionError("compare", text, f"--compare takes a comma-separated list of "
+                             f"{', '.join(COLLISION_MODES)}"
+                             + (f"; unknown: {', '.join(unknown)}" if unknown else ""))
     return variants
 
 

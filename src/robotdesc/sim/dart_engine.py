@@ -26,14 +26,15 @@ from typing import Any, Iterator, Mapping, Sequence
 
 import numpy as np
 
+from robotdesc.errors import SimModelError
 from robotdesc.model.elements import Robot
 from robotdesc.model.tree import roots
 from robotdesc.sim.backend import import_dartpy
-from robotdesc.sim.convert import SceneOptions, SimModelError
 from robotdesc.sim.dart_urdf import dart_urdf
 from robotdesc.sim.engine import EngineScene
 from robotdesc.sim.hold import HoldOptions
 from robotdesc.sim.meshes import MeshAssets
+from robotdesc.sim.scene import SceneOptions
 
 log = logging.getLogger(__name__)
 

@@ -25,6 +25,7 @@ from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
+from robotdesc.errors import SimModelError
 from robotdesc.model.elements import (
     Box,
     Capsule,
@@ -37,7 +38,6 @@ from robotdesc.model.elements import (
     Sphere,
 )
 from robotdesc.model.tree import parent_joint_of
-from robotdesc.sim.convert import SimModelError
 from robotdesc.sim.meshes import MeshAssets, SimMeshError
 from robotdesc.spatial import rpy_matrix
 

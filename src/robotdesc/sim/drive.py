@@ -26,10 +26,11 @@ from typing import Any, Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 
-from robotdesc.errors import InputError
+from robotdesc.errors import DriveConfigError, SimOptionError
 from robotdesc.model.elements import Cylinder, Robot, Sphere
 from robotdesc.model.tree import poses_at
 from robotdesc.sim.engine import EngineScene
+from robotdesc.source import Span
 from robotdesc.spatial import rpy_matrix
 
 log = logging.getLogger(__name__)
@@ -37,10 +38,6 @@ log = logging.getLogger(__name__)
 #: progress(label, simulated s, total s, wall s so far)
 Progress = Callable[[str, float, float, float], None]
 _PROGRESS_PERIOD = 2.0
-
-
-class DriveConfigError(InputError):
-    """The drive joints cannot be found or do not fit the robot."""
 
 
 @dataclass(frozen=True)
@@ -96,8 +93,13 @@ class DriveOptions:
     tolerance: float = 0.3
 
     def __post_init__(self) -> None:
-        if not self.seconds > 0 or not self.settle >= 0 or not self.tolerance > 0:
-            raise ValueError("drive seconds and tolerance must be positive, settle >= 0")
+        message = "drive seconds and tolerance must be positive, settle >= 0"
+        if not self.seconds > 0:
+            raise SimOptionError("seconds", self.seconds, message)
+        if not self.settle >= 0:
+            raise SimOptionError("settle", self.settle, message)
+        if not self.tolerance > 0:
+            raise SimOptionError("tolerance", self.tolerance, message)
 
 
 @dataclass(frozen=True)
@@ -165,8 +167,8 @@ def groups_from_config(source: str, files: Sequence[str] = ()) -> tuple[DriveGro
                 documents = list(yaml.safe_load_all(handle))
         except (OSError, yaml.YAMLError, UnicodeDecodeError) as error:
             if files:
-                raise DriveConfigError(f"{path}: cannot read the drive configuration "
-                                       f"({error})") from None
+                raise DriveConfigError(f"cannot read the drive configuration ({error})",
+                                       Span(path)) from None
             log.debug("%s: not read (%s)", path, error)
             continue
         for document in documents:
@@ -249,17 +251,20 @@ def resolve_groups(robot: Robot, groups: Sequence[DriveGroup]) -> tuple[DriveGro
     resolved = []
     for group in groups:
         if not group.left or not group.right:
-            raise DriveConfigError(f"drive group '{group.name}' needs left and right wheels")
+            raise DriveConfigError(f"drive group '{group.name}' needs left and right wheels",
+                                   group=group.name)
         for name in group.left + group.right:
             joint = robot.joint(name)
             if joint is None or joint.type not in ("continuous", "revolute"):
                 raise DriveConfigError(f"drive group '{group.name}': '{name}' is not a "
-                                       "revolute or continuous joint of the robot")
+                                       "revolute or continuous joint of the robot",
+                                       group=group.name, joint=name)
         radius = group.radius or _wheel_radius(robot, group.left + group.right)
         separation = group.separation or _separation(robot, poses, group)
         if radius is None or separation is None:
             raise DriveConfigError(f"drive group '{group.name}': give --wheel-radius and "
-                                   "--wheel-separation (not found in the model)")
+                                   "--wheel-separation (not found in the model)",
+                                   group=group.name)
         resolved.append(dataclasses.replace(group, separation=separation, radius=radius))
     return tuple(resolved)
 
@@ -280,7 +285,7 @@ def wheel_signs(robot: Robot, names: Iterable[str]) -> dict[str, float]:
         forward = float(np.cross(axis, (0.0, 0.0, 1.0))[0])  # rolling: v = w r (axis x z)
         if abs(forward) < 1e-6 * max(float(np.linalg.norm(axis)), 1e-12):
             raise DriveConfigError(f"wheel joint '{name}' does not roll along the root "
-                                   "link's x axis")
+                                   "link's x axis", joint=name)
         signs[name] = 1.0 if forward > 0 else -1.0
     return signs
 

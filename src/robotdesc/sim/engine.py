@@ -22,11 +22,12 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
+from robotdesc.errors import SimOptionError
 from robotdesc.model.elements import Robot
 from robotdesc.sim.backend import import_dartpy, import_mujoco
-from robotdesc.sim.convert import SceneOptions
 from robotdesc.sim.hold import HoldOptions
 from robotdesc.sim.meshes import MeshAssets
+from robotdesc.sim.scene import SceneOptions
 
 
 class EngineScene(abc.ABC):
@@ -143,8 +144,9 @@ def engine(name: str) -> Engine:
     """The registered engine called `name`.
 
     Raises:
-        ValueError: no engine has that name.
+        SimOptionError: no engine has that name.
     """
     if name not in ENGINES:
-        raise ValueError(f"unknown engine {name!r} (known: {', '.join(ENGINES)})")
+        raise SimOptionError("engine", name, f"unknown engine {name!r} "
+                             f"(known: {', '.join(ENGINES)})")
     return ENGINES[name]

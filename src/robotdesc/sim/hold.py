@@ -17,7 +17,8 @@ from typing import Any, Literal
 
 import numpy as np
 
-from robotdesc.sim.convert import Scene
+from robotdesc.errors import SimOptionError
+from robotdesc.sim.scene import Scene
 
 _CORNERS = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], dtype=float)
 
@@ -39,9 +40,13 @@ class HoldOptions:
 
     def __post_init__(self) -> None:
         if self.mode not in ("position", "passive"):
-            raise ValueError(f"hold mode must be 'position' or 'passive', got {self.mode!r}")
-        if not self.frequency > 0 or not self.damping_ratio >= 0:
-            raise ValueError("hold frequency must be positive and damping ratio >= 0")
+            raise SimOptionError("mode", self.mode, f"hold mode must be 'position' or "
+                                 f"'passive', got {self.mode!r}")
+        message = "hold frequency must be positive and damping ratio >= 0"
+        if not self.frequency > 0:
+            raise SimOptionError("frequency", self.frequency, message)
+        if not self.damping_ratio >= 0:
+            raise SimOptionError("damping_ratio", self.damping_ratio, message)
 
 
 @dataclass(frozen=True)

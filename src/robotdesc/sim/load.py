@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import os
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, Mapping
 
 from robotdesc.expansion import ExpandOptions, expand_file
 from robotdesc.expansion.packages import package_lookup
+from robotdesc.mesh.locate import MeshLocator
 from robotdesc.model.elements import Robot
 from robotdesc.sim.meshes import MeshAssets
 
@@ -18,7 +18,7 @@ class SimInput:
 
     Attributes:
         robot: the strictly parsed robot.
-        meshes: resolves `<mesh>` references through robotdesc's package resolver.
+        meshes: resolves `<mesh>` references as lint does (`robotdesc.mesh.locate`).
     """
 
     robot: Robot
@@ -26,8 +26,17 @@ class SimInput:
 
 
 def load_sim_input(path: str, args: Mapping[str, str] | None = None,
-                   expand_options: Any = None) -> SimInput:
-    """Expand (when xacro) and parse `path`; meshes resolve as the expansion's packages do.
+                   expand_options: ExpandOptions | None = None, *,
+                   allow_absolute: bool = False) -> SimInput:
+    """Expand (when xacro) and parse `path`; meshes resolve under the rules of lint.
+
+    Args:
+        path: the description file.
+        args: xacro arguments.
+        expand_options: the expansion's options (its package paths and map are searched
+            for meshes too).
+        allow_absolute: accept `file://` URIs and absolute mesh paths (the config's
+            `[meshes] allow_absolute_paths`; off by default, as for lint).
 
     Raises:
         InputError: the file could not be expanded or parsed.
@@ -38,24 +47,10 @@ def load_sim_input(path: str, args: Mapping[str, str] | None = None,
     expanded = expand_file(path, dict(args or {}), options=options)
     robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
     known = {package.name: package.path for package in expanded.packages}
-    return SimInput(robot, mesh_assets_for(expanded.source, options, known))
-
-
-def mesh_assets_for(source: str, expand_options: Any = None,
-                    known: Mapping[str, str] | None = None) -> MeshAssets:
-    """Mesh resolution for a description file: packages found like the expansion finds them.
-
-    Args:
-        source: the description file.
-        expand_options: `ExpandOptions` (its package paths and map are searched first).
-        known: packages already resolved (name -> directory).
-    """
-    paths = tuple(getattr(expand_options, "package_paths", ()) or ())
-    mapping = tuple(getattr(expand_options, "package_map", ()) or ())
-    search = package_lookup(source, paths, mapping)
-    resolved = dict(known or {})
+    search = package_lookup(expanded.source, options.package_paths, options.package_map)
 
     def find_package(name: str) -> str | None:
-        return resolved[name] if name in resolved else search(name)
+        """The packages the expansion used first, then the resolver chain."""
+        return known[name] if name in known else search(name)
 
-    return MeshAssets(find_package, os.path.dirname(os.path.abspath(source)))
+    return SimInput(robot, MeshAssets(MeshLocator(robot, find_package, allow_absolute)))

@@ -3,8 +3,10 @@
 MuJoCo reads STL (at most 200,000 faces), OBJ and MSH files. Everything else robotdesc reads
 (COLLADA with its `<unit>` and node transforms, GLB/glTF, PLY), oversized STL files and
 mirroring scales are loaded by robotdesc's own mesh loader and handed to MuJoCo as vertex and
-face arrays in memory, so no temporary file is left behind. Package paths are resolved by
-robotdesc (no ROS needed).
+face arrays in memory, so no temporary file is left behind. References are found by the one
+mesh locator lint uses (`robotdesc.mesh.locate.MeshLocator`: package paths resolved by
+robotdesc without ROS, a relative path from the file that wrote the `<mesh>`, absolute paths
+only when the config allows them).
 """
 
 from __future__ import annotations
@@ -12,12 +14,11 @@ from __future__ import annotations
 import logging
 import os
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 
-from robotdesc.errors import InputError
-from robotdesc.mesh.resolve import resolve_mesh
+from robotdesc.errors import InputError, MeshError
+from robotdesc.mesh.locate import MeshLocator
 from robotdesc.model.elements import MeshRef
 from robotdesc.source import Span
 
@@ -27,8 +28,6 @@ log = logging.getLogger(__name__)
 NATIVE_FORMATS = frozenset({"stl", "obj"})
 #: MuJoCo's STL reader refuses files with more faces than this.
 MUJOCO_STL_FACE_LIMIT = 200_000
-
-PackageLookup = Callable[[str], "str | None"]
 
 
 class SimMeshError(InputError):
@@ -60,16 +59,11 @@ class MeshAssets:
     """Resolves and converts the meshes of one robot, each file once.
 
     Args:
-        find_package: a package's root directory, or None when unknown.
-        base_dir: the directory relative mesh paths are taken from (the description's).
-        allow_absolute: accept absolute paths and `file://` URIs.
+        locator: where each `<mesh>` leads (the rules of lint, under the config's policy).
     """
 
-    def __init__(self, find_package: PackageLookup, base_dir: str,
-                 allow_absolute: bool = True) -> None:
-        self._find_package = find_package
-        self._base_dir = base_dir
-        self._allow_absolute = allow_absolute
+    def __init__(self, locator: MeshLocator) -> None:
+        self.locator = locator
         self._assets: dict[tuple[str, tuple[float, float, float]], MeshAsset] = {}
 
     def asset(self, ref: MeshRef) -> MeshAsset:
@@ -78,13 +72,11 @@ class MeshAssets:
         Raises:
             SimMeshError: the reference does not resolve or the file cannot be read.
         """
-        resolution = resolve_mesh(ref.filename, base_dir=self._base_dir,
-                                  find_package=self._find_package,
-                                  allow_absolute=self._allow_absolute)
+        resolution = self.locator.locate(ref)
         if resolution.path is None:
             problem = resolution.problem.message if resolution.problem else "does not resolve"
             raise SimMeshError(f"cannot simulate: {problem}", _span(ref))
-        scale = tuple(float(s) for s in ref.scale)
+        scale = (float(ref.scale[0]), float(ref.scale[1]), float(ref.scale[2]))
         key = (resolution.path, scale)
         if key not in self._assets:
             self._assets[key] = self._make(resolution.path, scale, ref, len(self._assets))
@@ -97,7 +89,6 @@ class MeshAssets:
         if extension in NATIVE_FORMATS and np.prod(scale) > 0 and _native_ok(path, extension):
             return MeshAsset(name, path, scale, source=path)
         from robotdesc.mesh.load import load_mesh
-        from robotdesc.mesh.validate import MeshError
 
         try:
             loaded = load_mesh(path, scale)

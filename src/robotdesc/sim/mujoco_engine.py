@@ -1,4 +1,4 @@
-"""The MuJoCo engine behind `EngineScene`: the settle scene of `robotdesc.sim.convert`, its
+"""The MuJoCo engine behind `EngineScene`: the settle scene of `robotdesc.sim.mujoco_build`, its
 joints held by the servos of `robotdesc.sim.hold`.
 
 Drive joints switch from their position servo to a velocity servo, force limited by the
@@ -20,11 +20,12 @@ import numpy as np
 
 from robotdesc.model.elements import Robot
 from robotdesc.sim.backend import import_mujoco
-from robotdesc.sim.convert import Scene, SceneOptions, lowest_point
-from robotdesc.sim.convert import build_scene as build_mujoco_scene
 from robotdesc.sim.engine import EngineScene
 from robotdesc.sim.hold import HoldOptions, apply_hold, neutral_controls
 from robotdesc.sim.meshes import MeshAssets
+from robotdesc.sim.mujoco_build import build_scene as build_mujoco_scene
+from robotdesc.sim.mujoco_build import lowest_point
+from robotdesc.sim.scene import Scene, SceneOptions
 
 #: Speed error (rad/s) at which a drive servo pushes the wheel's share of the robot's weight.
 DRIVE_SLIP = 0.02
@@ -33,7 +34,7 @@ DRIVE_SLIP = 0.02
 def build_scene(robot: Robot, meshes: MeshAssets, options: SceneOptions,
                 hold: HoldOptions = HoldOptions(),
                 parts: Mapping[str, Sequence[Any]] | None = None) -> "MujocoScene":
-    """The MuJoCo scene of `robot` (see `robotdesc.sim.convert.build_scene`)."""
+    """The MuJoCo scene of `robot` (see `robotdesc.sim.mujoco_build.build_scene`)."""
     mujoco = import_mujoco()
     return MujocoScene(mujoco, build_mujoco_scene(robot, meshes, options,
                                                   collision_parts=parts), hold)

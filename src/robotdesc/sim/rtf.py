@@ -6,8 +6,8 @@ import time
 from dataclasses import dataclass
 
 from robotdesc.sim.backend import import_mujoco
-from robotdesc.sim.convert import Scene
 from robotdesc.sim.hold import HoldOptions, apply_hold, neutral_controls
+from robotdesc.sim.scene import Scene
 
 
 @dataclass(frozen=True)

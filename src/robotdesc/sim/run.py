@@ -6,10 +6,12 @@ import logging
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
+from robotdesc.errors import SimModelError, SimOptionError
 from robotdesc.model.elements import Robot
-from robotdesc.sim.convert import SceneOptions, SimModelError, build_scene
 from robotdesc.sim.meshes import MeshAssets, SimMeshError
+from robotdesc.sim.mujoco_build import build_scene
 from robotdesc.sim.rtf import RtfComparison, measure_rtf
+from robotdesc.sim.scene import SceneOptions
 from robotdesc.sim.settle import CheckResult, SettleOptions, SettleReport, settle
 from robotdesc.sim.variants import COLLISION_MODES, generated_parts, visual_as_collision
 
@@ -34,8 +36,8 @@ class SimOptions:
 
     def __post_init__(self) -> None:
         if self.collision not in COLLISION_MODES:
-            raise ValueError(f"collision must be one of {', '.join(COLLISION_MODES)}, "
-                             f"got {self.collision!r}")
+            raise SimOptionError("collision", self.collision, f"collision must be one of "
+                                 f"{', '.join(COLLISION_MODES)}, got {self.collision!r}")
 
 
 def settle_robot(robot: Robot, meshes: MeshAssets, options: SimOptions = SimOptions(),

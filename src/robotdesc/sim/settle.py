@@ -21,9 +21,10 @@ from typing import Any
 
 import numpy as np
 
+from robotdesc.errors import SimOptionError
 from robotdesc.sim.backend import import_mujoco
-from robotdesc.sim.convert import Scene
 from robotdesc.sim.hold import HoldOptions, JointInertia, apply_hold, neutral_controls
+from robotdesc.sim.scene import Scene
 
 log = logging.getLogger(__name__)
 
@@ -69,7 +70,8 @@ class SettleOptions:
 
     def __post_init__(self) -> None:
         if not self.seconds > 0:
-            raise ValueError(f"seconds must be positive, got {self.seconds}")
+            raise SimOptionError("seconds", self.seconds,
+                                 f"seconds must be positive, got {self.seconds}")
 
 
 @dataclass(frozen=True)

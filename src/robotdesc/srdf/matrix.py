@@ -274,7 +274,7 @@ def compute_matrix(robot: Robot, mesh_path: MeshPath, *, samples: int = 10000, s
 
     Args:
         robot: the parsed robot.
-        mesh_path: resolves `<mesh>` references (see kinematics.resolve.mesh_resolver).
+        mesh_path: resolves `<mesh>` references (e.g. `mesh.locate.MeshLocator.path`).
         samples: N, the most random configurations to check.
         seed: random seed; the same seed gives the same result (whatever `workers` is).
         workers: processes checking samples in parallel (1: in this process).

@@ -7,7 +7,7 @@ page with a small WebGL viewer (viewer.js, no network).
     view.save("robot.html")
 
 Modules: forward (kinematics), shapes (primitive meshes), simplify (display reduction),
-inertia_box, mesh_files, scene, findings, encode, html, show.
+inertia_box, scene, findings, encode, html, show (meshes are found by `robotdesc.mesh.locate`).
 """
 
 from __future__ import annotations

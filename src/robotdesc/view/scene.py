@@ -16,7 +16,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from robotdesc.mesh.validate import MeshError
+from robotdesc.errors import MeshError
+from robotdesc.mesh.locate import MeshLocator
 from robotdesc.model.elements import (
     Box,
     Capsule,
@@ -31,7 +32,6 @@ from robotdesc.model.elements import (
 from robotdesc.model.tree import configuration, poses_at
 from robotdesc.spatial import pose_matrix
 from robotdesc.view.inertia_box import InertiaBox, inertia_box
-from robotdesc.view.mesh_files import MeshFiles
 from robotdesc.view.shapes import primitive_mesh
 from robotdesc.view.simplify import reduce_faces, weld
 
@@ -148,7 +148,7 @@ class Scene:
 
 
 def build_scene(robot: Robot, joint_values: Mapping[str, float] | None = None, *,
-                meshes: MeshFiles | None = None, package_paths: tuple[str, ...] = (),
+                meshes: MeshLocator | None = None, package_paths: tuple[str, ...] = (),
                 package_map: tuple[tuple[str, str], ...] = (), max_faces: int = DEFAULT_MAX_FACES,
                 kinds: tuple[str, ...] = KINDS) -> Scene:
     """The display scene of `robot` at a configuration.
@@ -167,7 +167,7 @@ def build_scene(robot: Robot, joint_values: Mapping[str, float] | None = None, *
     """
     q = configuration(robot, joint_values)
     poses = poses_at(robot, q)
-    files = meshes or MeshFiles.for_robot(robot, package_paths, package_map)
+    files = meshes or MeshLocator.for_robot(robot, package_paths, package_map)
     builder = _GeometryStore(files, max_faces)
     instances: list[SceneInstance] = []
     problems: list[SceneProblem] = []
@@ -204,7 +204,7 @@ _Key = tuple[str, str, tuple[object, ...]]
 class _GeometryStore:
     """Distinct display shapes, keyed by mesh file and scale or by primitive."""
 
-    def __init__(self, files: MeshFiles, max_faces: int) -> None:
+    def __init__(self, files: MeshLocator, max_faces: int) -> None:
         self.geometries: list[SceneGeometry] = []
         self._files = files
         self._max_faces = max_faces
@@ -216,7 +216,7 @@ class _GeometryStore:
         if geometry is None:
             return "the geometry element is missing or unreadable"
         if isinstance(geometry, MeshRef):
-            resolution = self._files.resolve(geometry)
+            resolution = self._files.locate(geometry)
             if not resolution.ok or resolution.path is None:
                 return resolution.problem.message if resolution.problem else "not found"
             key: _Key = ("mesh", resolution.path, tuple(geometry.scale))

@@ -13,7 +13,7 @@ import re
 import urllib.parse
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import Protocol
 
 from lxml import etree
 
@@ -29,7 +29,7 @@ _DEFAULTS = {("origin", "xyz"): "0 0 0", ("origin", "rpy"): "0 0 0"}
 class AttributeChange:
     """Set `attribute` of one expanded element to `value` (adding it when absent)."""
 
-    element: Any  # an lxml element of the expanded document
+    element: etree._Element  # of the expanded document
     attribute: str
     value: str
 
@@ -41,6 +41,20 @@ class NotApplicable:
     reason: str
 
 
+#: What a fixer returns: the changes, or why there are none.
+Changes = list[AttributeChange] | NotApplicable
+
+
+class CaseHelper(Protocol):
+    """M102's helper (`robotdesc.linting.fix.run.MeshCase`): the file on disk that a
+    case-mismatched mesh reference names."""
+
+    def case_candidate(self, element: str) -> str | None:
+        """The path of the file on disk whose name differs from the reference's only in
+        case, for the `<mesh>` of diagnostic element `element`; None when there is none."""
+        ...
+
+
 class ExpandedIndex:
     """The expanded document with each element's provenance, by link and joint name."""
 
@@ -50,14 +64,14 @@ class ExpandedIndex:
         self.source, self.files = source, files
         self.links = {e.get("name"): e for e in self.root.iterchildren("link")}
         self.joints = {e.get("name"): e for e in self.root.iterchildren("joint")}
-        self._where: dict[Any, Provenance] = {}
-        self.by_span: dict[tuple[str, int, str], list[Any]] = {}
+        self._where: dict[etree._Element, Provenance] = {}
+        self.by_span: dict[tuple[str, int, str], list[etree._Element]] = {}
         for element in self.root.iter(etree.Element):
             span = self.where(element).span
             self.by_span.setdefault((span.path, span.line, _local(element.tag)), []).append(
                 element)
 
-    def where(self, element: Any) -> Provenance:
+    def where(self, element: etree._Element) -> Provenance:
         """The element's own provenance (not an ancestor's)."""
         found = self._where.get(element)
         if found is None:
@@ -69,7 +83,7 @@ class ExpandedIndex:
             self._where[element] = found
         return found
 
-    def element(self, name: str) -> Any:
+    def element(self, name: str) -> etree._Element | None:
         """The expanded element a diagnostic's element name points to, or None."""
         match = _ELEMENT.match(name or "")
         if match is None:
@@ -83,11 +97,11 @@ class ExpandedIndex:
         return found[position] if position < len(found) else None
 
 
-def _local(tag: Any) -> str:
+def _local(tag: object) -> str:
     return tag.rpartition("}")[2] if isinstance(tag, str) else ""
 
 
-def _geometry_mesh(element: Any) -> Any:
+def _geometry_mesh(element: etree._Element | None) -> etree._Element | None:
     """The `<mesh>` of a visual or collision element, or None."""
     if element is None:
         return None
@@ -111,7 +125,8 @@ def _same(a: str | None, b: str) -> bool:
 # --- fixers -------------------------------------------------------------------------------
 
 
-def inertial_changes(diagnostic: Diagnostic, index: ExpandedIndex, _: Any) -> list | NotApplicable:
+def inertial_changes(diagnostic: Diagnostic, index: ExpandedIndex, _: CaseHelper | None
+                     ) -> Changes:
     """The attribute changes that turn the declared `<inertial>` into the suggested block."""
     try:
         block = etree.fromstring(diagnostic.fix or "")
@@ -137,7 +152,7 @@ def inertial_changes(diagnostic: Diagnostic, index: ExpandedIndex, _: Any) -> li
     return changes
 
 
-def axis_changes(diagnostic: Diagnostic, index: ExpandedIndex, _: Any) -> list | NotApplicable:
+def axis_changes(diagnostic: Diagnostic, index: ExpandedIndex, _: CaseHelper | None) -> Changes:
     """J107: the axis at unit length (the rule's fix text)."""
     joint = index.element(diagnostic.element)
     axis = next(iter(joint.iterchildren("axis")), None) if joint is not None else None
@@ -147,7 +162,8 @@ def axis_changes(diagnostic: Diagnostic, index: ExpandedIndex, _: Any) -> list |
     return [AttributeChange(axis, "xyz", match.group(1))]
 
 
-def limit_changes(diagnostic: Diagnostic, index: ExpandedIndex, _: Any) -> list | NotApplicable:
+def limit_changes(diagnostic: Diagnostic, index: ExpandedIndex, _: CaseHelper | None
+                  ) -> Changes:
     """J103: lower and upper swapped."""
     joint = index.element(diagnostic.element)
     limit = next(iter(joint.iterchildren("limit")), None) if joint is not None else None
@@ -157,7 +173,8 @@ def limit_changes(diagnostic: Diagnostic, index: ExpandedIndex, _: Any) -> list 
             AttributeChange(limit, "upper", limit.get("lower"))]
 
 
-def scale_changes(diagnostic: Diagnostic, index: ExpandedIndex, _: Any) -> list | NotApplicable:
+def scale_changes(diagnostic: Diagnostic, index: ExpandedIndex, _: CaseHelper | None
+                  ) -> Changes:
     """M108: the mesh scaled by 0.001."""
     mesh = _geometry_mesh(index.element(diagnostic.element))
     if mesh is None:
@@ -168,8 +185,8 @@ def scale_changes(diagnostic: Diagnostic, index: ExpandedIndex, _: Any) -> list 
     return [AttributeChange(mesh, "scale", " ".join(f"{v * 0.001:g}" for v in scale))]
 
 
-def case_changes(diagnostic: Diagnostic, index: ExpandedIndex, helper: Any
-                 ) -> list | NotApplicable:
+def case_changes(diagnostic: Diagnostic, index: ExpandedIndex, helper: CaseHelper | None
+                 ) -> Changes:
     """M102: the file name spelt as the file on disk."""
     mesh = _geometry_mesh(index.element(diagnostic.element))
     candidate = helper.case_candidate(diagnostic.element) if helper is not None else None
@@ -187,8 +204,8 @@ def case_changes(diagnostic: Diagnostic, index: ExpandedIndex, helper: Any
     return [AttributeChange(mesh, "filename", "/".join(fixed))]
 
 
-def package_changes(diagnostic: Diagnostic, index: ExpandedIndex, _: Any
-                    ) -> list | NotApplicable:
+def package_changes(diagnostic: Diagnostic, index: ExpandedIndex, _: CaseHelper | None
+                    ) -> Changes:
     """P101/P102: an absolute path or file:// URI as package://PACKAGE/PATH."""
     mesh = _geometry_mesh(index.element(diagnostic.element))
     if mesh is None:
@@ -224,7 +241,8 @@ def enclosing_package(path: str) -> tuple[str, str] | None:
         folder = parent
 
 
-Fixer = Callable[[Diagnostic, ExpandedIndex, Any], "list | NotApplicable"]
+#: A fixer: the diagnostic, the expanded document, M102's helper (None: not known).
+Fixer = Callable[[Diagnostic, ExpandedIndex, CaseHelper | None], Changes]
 
 FIXERS: dict[str, Fixer] = {
     "J103": limit_changes, "J107": axis_changes, "M102": case_changes,

@@ -12,14 +12,21 @@ import difflib
 import hashlib
 import logging
 import os
-from collections.abc import Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
 
 from robotdesc.atomic import write_atomically
 from robotdesc.diagnostics import Diagnostic
-from robotdesc.linting.fix.changes import ExpandedIndex, NotApplicable, enclosing_package, fixer_for
+from robotdesc.linting.fix.changes import (
+    CaseHelper,
+    ExpandedIndex,
+    Fixer,
+    NotApplicable,
+    enclosing_package,
+    fixer_for,
+)
 from robotdesc.linting.fix.plan import Edit, SourceCache, plan_change
+from robotdesc.linting.result import LintResult
 from robotdesc.rules.fixes import Applicability, fix_applicability
 
 log = logging.getLogger(__name__)
@@ -85,14 +92,14 @@ def package_root(target: str) -> str:
     return found[1] if found else os.path.dirname(os.path.abspath(target))
 
 
-def plan_fixes(results: Sequence[Any], *, unsafe: bool = False, helpers: dict | None = None
-               ) -> FixPlan:
+def plan_fixes(results: Sequence[LintResult], *, unsafe: bool = False,
+               helpers: Mapping[str, CaseHelper] | None = None) -> FixPlan:
     """Plan the fixes of every fixable diagnostic of `results` (LintResults with their
     expansion and model kept).
 
     Args:
         unsafe: plan unsafe fixes too.
-        helpers: target -> an object with `case_candidate(element)` (M102's file on disk).
+        helpers: target -> M102's helper (the file on disk a mesh reference names).
     """
     outcomes: list[FixOutcome] = []
     caches: dict[str, SourceCache] = {}
@@ -102,8 +109,8 @@ def plan_fixes(results: Sequence[Any], *, unsafe: bool = False, helpers: dict | 
         if result.expanded is None:
             continue
         root = package_root(result.target)
-        cache = caches.setdefault(root, SourceCache(lambda p, r=root: _inside(p, r)))
-        index = None
+        cache = caches.setdefault(root, SourceCache(_within(root)))
+        index: ExpandedIndex | None = None
         for diagnostic in result.diagnostics:
             fixer = fixer_for(diagnostic)
             applicability = fix_applicability(diagnostic.code, diagnostic.fix)
@@ -125,12 +132,13 @@ def plan_fixes(results: Sequence[Any], *, unsafe: bool = False, helpers: dict | 
     return FixPlan(_apply(outcomes, raw), tuple(outcomes))
 
 
-def _plan_one(diagnostic: Diagnostic, applicability: Applicability, fixer: Any,
-              index: ExpandedIndex, cache: SourceCache, helper: Any) -> FixOutcome:
+def _plan_one(diagnostic: Diagnostic, applicability: Applicability, fixer: Fixer,
+              index: ExpandedIndex, cache: SourceCache, helper: CaseHelper | None
+              ) -> FixOutcome:
     changes = fixer(diagnostic, index, helper)
     if isinstance(changes, NotApplicable):
         return FixOutcome(diagnostic, applicability, NOT_APPLICABLE, changes.reason)
-    edits = []
+    edits: list[Edit] = []
     for change in changes:
         edit = plan_change(change, index, cache)
         if isinstance(edit, NotApplicable):
@@ -154,9 +162,9 @@ def _check_shared(outcomes: list[FixOutcome]) -> list[FixOutcome]:
         refused: dict[int, str] = {}
         for (path, _, _), entries in by_location.items():
             edits = [edit for _, edit in entries]
-            group = frozenset().union(*(e.group for e in edits))
+            group: frozenset[int] = frozenset().union(*(e.group for e in edits))
             covered = frozenset(e.target for e in edits)
-            sites = frozenset().union(*(e.sites for e in edits))
+            sites: frozenset[tuple[str, int]] = frozenset().union(*(e.sites for e in edits))
             reason = ""
             if len({e.text for e in edits}) > 1:
                 reason = f"fixes ask different values at {path}:{edits[0].line}"
@@ -179,7 +187,7 @@ def _apply(outcomes: list[FixOutcome], raw: dict[str, bytes]) -> tuple[FileFix, 
     for outcome in outcomes:
         for edit in outcome.edits if outcome.status == FIXED else ():
             per_file.setdefault(edit.path, {})[(edit.start, edit.end)] = edit.text
-    files = []
+    files: list[FileFix] = []
     for path in sorted(per_file):
         text = raw[path].decode("utf-8")
         last = len(text) + 1
@@ -197,7 +205,8 @@ def _apply(outcomes: list[FixOutcome], raw: dict[str, bytes]) -> tuple[FileFix, 
 
 def write_fixes(plan: FixPlan) -> tuple[list[str], list[str]]:
     """Write the fixed files atomically; (written, refused because changed since read)."""
-    written, refused = [], []
+    written: list[str] = []
+    refused: list[str] = []
     for item in plan.files:
         try:
             with open(item.path, "rb") as handle:
@@ -214,6 +223,11 @@ def write_fixes(plan: FixPlan) -> tuple[list[str], list[str]]:
 
 def _digest(data: bytes) -> str:
     return hashlib.sha256(data).hexdigest()
+
+
+def _within(root: str) -> Callable[[str], bool]:
+    """Whether a path is inside `root` (symbolic links resolved)."""
+    return lambda path: _inside(path, root)
 
 
 def _inside(path: str, root: str) -> bool:

@@ -94,7 +94,8 @@ def plan_change(change: AttributeChange, index: ExpandedIndex, files: SourceCach
         return NotApplicable(f"no single <{tag_name}> written at {span}")
     tag = tags[0]
     group = index.by_span.get((span.path, span.line, tag_name), [])
-    depth, sites, uses = 0, frozenset(), 0
+    depth, uses = 0, 0
+    sites: frozenset[tuple[str, int]] = frozenset()
     while True:
         attribute = tag.attribute(change.attribute)
         members = frozenset(id(e) for e in group
@@ -123,7 +124,8 @@ def plan_change(change: AttributeChange, index: ExpandedIndex, files: SourceCach
         caller = files.get(call.path)
         if isinstance(caller, str):
             return NotApplicable(caller)
-        macro_name = macro.attribute("name").value if macro.attribute("name") else ""
+        named = macro.attribute("name")
+        macro_name = named.value if named is not None else ""
         calls = [t for t in caller.tags if t.line == call.line
                  and t.local_name == macro_name and t.name != "xacro:macro"]
         if len(calls) != 1:

@@ -5,15 +5,19 @@ scale can change an inertia suggestion)."""
 from __future__ import annotations
 
 import logging
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any, Mapping
 
+from robotdesc.config import Config
 from robotdesc.errors import InputError
 from robotdesc.expansion import ExpandOptions
 from robotdesc.linting.driver import lint_file
+from robotdesc.linting.fix.changes import CaseHelper
 from robotdesc.linting.fix.engine import FixOutcome, FixPlan, plan_fixes, write_fixes
+from robotdesc.linting.result import LintResult
+from robotdesc.linting.targets import LintTarget
 from robotdesc.mesh.context import MeshContext
+from robotdesc.model.elements import MeshRef, Robot
 
 log = logging.getLogger(__name__)
 
@@ -42,12 +46,15 @@ class FixRun:
 class MeshCase:
     """M102's helper: the file on disk that a case-mismatched mesh reference names."""
 
-    def __init__(self, result: Any, config: Any, options: Any) -> None:
+    def __init__(self, result: LintResult, config: Config, options: ExpandOptions) -> None:
         self.result, self.config, self.options = result, config, options
-        self._context = None
+        self._context: MeshContext | None = None
 
     def case_candidate(self, element: str) -> str | None:
-        ref = _mesh_ref(self.result.robot, element)
+        """The file on disk for the `<mesh>` of diagnostic element `element` whose name
+        differs from the reference only in case, or None."""
+        robot = self.result.robot
+        ref = _mesh_ref(robot, element) if isinstance(robot, Robot) else None
         if ref is None:
             return None
         if self._context is None:
@@ -59,7 +66,7 @@ class MeshCase:
         return problem.candidate if problem is not None else None
 
 
-def _mesh_ref(robot: Any, element: str) -> Any:
+def _mesh_ref(robot: Robot, element: str) -> MeshRef | None:
     """The MeshRef named "link:NAME/visual[i]" or ".../collision[i]"."""
     head, _, tail = element.partition("/")
     link = next((l for l in robot.links if f"link:{l.name}" == head), None)
@@ -68,15 +75,20 @@ def _mesh_ref(robot: Any, element: str) -> Any:
         return None
     shapes = link.visuals if kind == "visual" else link.collisions
     index = int(rest[:-1])
-    return shapes[index].geometry if index < len(shapes) else None
+    geometry = shapes[index].geometry if index < len(shapes) else None
+    return geometry if isinstance(geometry, MeshRef) else None
 
 
-def fix_targets(targets: Sequence[Any], *, args: Mapping[str, str] | None = None,
-                expand_options: Any = None, select: Sequence[str] | None = None,
+def fix_targets(targets: Sequence[LintTarget], *, args: Mapping[str, str] | None = None,
+                expand_options: ExpandOptions | None = None,
+                select: Sequence[str] | None = None,
                 ignore: Sequence[str] = (), unsafe: bool = False, write: bool = True
                 ) -> FixRun:
     """Plan (and with `write`, apply) the fixes of every target's findings."""
-    first_diff, fixed, written, refused = None, 0, [], []
+    first_diff: str | None = None
+    fixed = 0
+    written: list[str] = []
+    refused: list[str] = []
     plan = FixPlan()
     for number in range(MAX_PASSES if write else 1):
         plan = _plan(targets, args, expand_options, select, ignore, unsafe)
@@ -95,10 +107,12 @@ def fix_targets(targets: Sequence[Any], *, args: Mapping[str, str] | None = None
     return FixRun(first_diff or "", plan.outcomes, fixed, tuple(written), tuple(refused))
 
 
-def _plan(targets: Sequence[Any], args: Mapping[str, str] | None, expand_options: Any,
-          select: Sequence[str] | None, ignore: Sequence[str], unsafe: bool) -> FixPlan:
+def _plan(targets: Sequence[LintTarget], args: Mapping[str, str] | None,
+          expand_options: ExpandOptions | None, select: Sequence[str] | None,
+          ignore: Sequence[str], unsafe: bool) -> FixPlan:
     options = expand_options or ExpandOptions()
-    results, helpers = [], {}
+    results: list[LintResult] = []
+    helpers: dict[str, CaseHelper] = {}
     for target in targets:
         try:
             result = lint_file(target.path, target.config,

@@ -8,6 +8,7 @@ and counts lines as expat (xacro's parser, so robotdesc's provenance) does.
 from __future__ import annotations
 
 import bisect
+import dataclasses
 import re
 from dataclasses import dataclass
 
@@ -15,6 +16,8 @@ _LINE_BREAK = re.compile(r"\r\n|\r|\n")
 _NAME = re.compile(r"[^\s/>]+")
 _ATTRIBUTE = re.compile(r"""\s+([^\s=/>]+)\s*=\s*(?:"([^"]*)"|'([^']*)')""")
 _END_TAG = re.compile(r"</([^\s>]+)\s*>")
+_TAG_CLOSE = re.compile(r"\s*(/?>)")
+_INDENT = re.compile(r"[ \t]*")
 
 
 @dataclass(frozen=True)
@@ -84,7 +87,7 @@ def scan(path: str, text: str) -> SourceText:
         ValueError: a tag or comment is not closed, or end tags do not pair.
     """
     breaks = [m.end() for m in _LINE_BREAK.finditer(text)]
-    records: list[list] = []
+    records: list[StartTag] = []
     opened: list[int] = []
     macros: list[int] = []
     pos = 0
@@ -99,10 +102,10 @@ def scan(path: str, text: str) -> SourceText:
             pos = _past(text, ">", lt)
         elif text.startswith("</", lt):
             match = _END_TAG.match(text, lt)
-            if not match or not opened or records[opened[-1]][0] != match.group(1):
+            if not match or not opened or records[opened[-1]].name != match.group(1):
                 raise ValueError(f"unpaired end tag at line {_line(breaks, lt)}")
             index = opened.pop()
-            records[index][6] = match.end()
+            records[index] = dataclasses.replace(records[index], element_end=match.end())
             if macros and macros[-1] == index:
                 macros.pop()
             pos = match.end()
@@ -113,20 +116,20 @@ def scan(path: str, text: str) -> SourceText:
             attributes, close = _attributes(text, name.end())
             empty = text.startswith("/>", close)
             end = close + (2 if empty else 1)
-            records.append([name.group(), lt, end, _line(breaks, lt), attributes, close,
-                            end if empty else -1, macros[-1] if macros else -1])
+            records.append(StartTag(name.group(), lt, end, _line(breaks, lt), attributes,
+                                    close, end if empty else -1, macros[-1] if macros else -1))
             if not empty:
                 opened.append(len(records) - 1)
                 if name.group() == "xacro:macro":
                     macros.append(len(records) - 1)
             pos = end
     if opened:
-        raise ValueError(f"<{records[opened[-1]][0]}> is not closed")
-    return SourceText(path, text, tuple(StartTag(*r) for r in records))
+        raise ValueError(f"<{records[opened[-1]].name}> is not closed")
+    return SourceText(path, text, tuple(records))
 
 
 def _attributes(text: str, pos: int) -> tuple[tuple[Attribute, ...], int]:
-    found = []
+    found: list[Attribute] = []
     while True:
         match = _ATTRIBUTE.match(text, pos)
         if match is None:
@@ -135,7 +138,7 @@ def _attributes(text: str, pos: int) -> tuple[tuple[Attribute, ...], int]:
         found.append(Attribute(match.group(1), match.group(group), match.start(group),
                                match.end(group)))
         pos = match.end()
-    rest = re.compile(r"\s*(/?>)").match(text, pos)
+    rest = _TAG_CLOSE.match(text, pos)
     if rest is None:
         raise ValueError(f"a tag is not closed near offset {pos}")
     return tuple(found), rest.start(1)
@@ -155,4 +158,5 @@ def _past(text: str, marker: str, start: int) -> int:
 def line_indent(text: str, offset: int) -> str:
     """The whitespace that starts the line holding `offset`."""
     begin = max(text.rfind("\n", 0, offset), text.rfind("\r", 0, offset)) + 1
-    return re.match(r"[ \t]*", text[begin:]).group(0)
+    found = _INDENT.match(text, begin)
+    return found.group(0) if found is not None else ""

@@ -1,4 +1,5 @@
-"""URDF -> MuJoCo: joints, limits (radians), dynamics, mimic equalities, meshes, ground."""
+"""URDF -> MuJoCo (sim/mujoco_build.py): joints, limits (radians), dynamics, mimic
+equalities, meshes, ground."""
 
 from __future__ import annotations
 
@@ -9,16 +10,13 @@ import pytest
 
 mujoco = pytest.importorskip("mujoco")
 
+from robotdesc.errors import SimModelError  # noqa: E402
+from robotdesc.mesh.locate import MeshLocator  # noqa: E402
 from robotdesc.model.parse import parse_urdf  # noqa: E402
-from robotdesc.sim.convert import (  # noqa: E402
-    SceneOptions,
-    SimModelError,
-    build_scene,
-    lowest_point,
-    rpy_to_quat,
-)
 from robotdesc.sim.meshes import MeshAssets, indexed  # noqa: E402
-from robotdesc.spatial import rpy_matrix  # noqa: E402
+from robotdesc.sim.mujoco_build import build_scene, lowest_point  # noqa: E402
+from robotdesc.sim.scene import SceneOptions  # noqa: E402
+from robotdesc.spatial import rotation_quaternion, rpy_matrix, rpy_quaternion  # noqa: E402
 
 from .sim_support import ERD, FIXTURES, load  # noqa: E402
 
@@ -73,8 +71,18 @@ def test_inertia_is_used_as_written(arm) -> None:
 def test_rpy_quaternion_matches_rotation_matrix() -> None:
     rpy = (0.3, -0.7, 1.9)
     matrix = np.zeros(9)
-    mujoco.mju_quat2Mat(matrix, np.array(rpy_to_quat(rpy)))
+    mujoco.mju_quat2Mat(matrix, np.array(rpy_quaternion(rpy)))
     assert np.allclose(matrix.reshape(3, 3), rpy_matrix(rpy))
+
+
+@pytest.mark.parametrize("rpy", [(0.3, -0.7, 1.9), (3.1, 0.2, -3.0), (0.0, math.pi / 2, 1.0),
+                                 (math.pi, 0.0, 0.0), (0.0, 0.0, math.pi), (0.0, 0.0, 0.0)])
+def test_rotation_quaternion_is_mujocos(rpy) -> None:
+    """spatial.rotation_quaternion replaces mju_mat2Quat in the builder: same numbers."""
+    matrix = rpy_matrix(rpy)
+    theirs = np.zeros(4)
+    mujoco.mju_mat2Quat(theirs, np.ascontiguousarray(matrix).ravel())
+    assert np.allclose(rotation_quaternion(matrix.tolist()), theirs, rtol=0, atol=1e-15)
 
 
 def test_a_massless_moving_link_is_a_model_error_naming_it() -> None:
@@ -85,7 +93,7 @@ def test_a_massless_moving_link_is_a_model_error_naming_it() -> None:
       <limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>"""
     robot = parse_urdf(text, "ghost.urdf")
     with pytest.raises(SimModelError) as caught:
-        build_scene(robot, MeshAssets(lambda name: None, "."))
+        build_scene(robot, MeshAssets(MeshLocator(robot, lambda name: None)))
     assert caught.value.link == "ghost"
     assert caught.value.span is not None and caught.value.span.line == 3
 
@@ -108,4 +116,4 @@ def test_indexed_merges_shared_vertices() -> None:
 
 
 def test_quaternions_are_unit() -> None:
-    assert math.isclose(float(np.linalg.norm(rpy_to_quat((1.0, 2.0, 3.0)))), 1.0)
+    assert math.isclose(float(np.linalg.norm(rpy_quaternion((1.0, 2.0, 3.0)))), 1.0)

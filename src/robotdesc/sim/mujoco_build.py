@@ -1,4 +1,5 @@
-"""A parsed robot -> a MuJoCo model on a ground plane (built with MjSpec, not MuJoCo's URDF import).
+"""A parsed robot -> a MuJoCo model on a ground plane (built with MjSpec, not MuJoCo's URDF
+import); the result is a `robotdesc.sim.scene.Scene`.
 
 Each link becomes a body placed by its parent joint's origin; revolute/continuous joints become
 hinges, prismatic joints slides, planar joints two slides and a hinge, fixed joints a weld (no
@@ -16,12 +17,11 @@ import dataclasses
 import logging
 import math
 import re
-from dataclasses import dataclass
 from typing import Any, Mapping, Sequence
 
 import numpy as np
 
-from robotdesc.errors import InputError
+from robotdesc.errors import SimModelError
 from robotdesc.model import tree
 from robotdesc.model.elements import (
     Box,
@@ -37,8 +37,15 @@ from robotdesc.model.elements import (
 )
 from robotdesc.sim.backend import import_mujoco
 from robotdesc.sim.meshes import MeshAssets
+from robotdesc.sim.scene import Scene, SceneOptions, SimJoint, SimMimic
 from robotdesc.source import Span
-from robotdesc.spatial import rpy_matrix
+from robotdesc.spatial import (
+    perpendicular_axes,
+    principal_axes,
+    rotation_quaternion,
+    rpy_matrix,
+    rpy_quaternion,
+)
 
 log = logging.getLogger(__name__)
 
@@ -47,108 +54,6 @@ _ROBOT_BITS, _GROUND_BITS = 1, 2
 #: Joint limits and mimic constraints: stiffer than MuJoCo's default (0.02 s), as in URDF.
 _STIFF_SOLREF = (0.005, 1.0)
 _MOVING = {"revolute": "hinge", "continuous": "hinge", "prismatic": "slide"}
-
-
-class SimModelError(InputError):
-    """The robot cannot become a simulation model; names the link when one is to blame.
-
-    Attributes:
-        link: the offending link's name, or "" when no single link is to blame.
-    """
-
-    def __init__(self, message: str, span: Span | None = None, link: str = "") -> None:
-        super().__init__(message, span)
-        self.link = link
-
-
-@dataclass(frozen=True)
-class SceneOptions:
-    """How the robot is put into the scene.
-
-    Attributes:
-        timestep: integration step (s).
-        drop_height: gap between the lowest collision geometry and the ground at start (m).
-        self_collision: let the robot's own links collide with each other.
-        friction: sliding friction coefficient of every contact (dimensionless).
-        collision_from_visual: use the visual geometry as collision geometry.
-    """
-
-    timestep: float = 0.002
-    drop_height: float = 0.05
-    self_collision: bool = False
-    friction: float = 1.0
-    collision_from_visual: bool = False
-
-    def __post_init__(self) -> None:
-        if not self.timestep > 0:
-            raise ValueError(f"timestep must be positive, got {self.timestep}")
-        if not self.drop_height >= 0:
-            raise ValueError(f"drop height must be >= 0, got {self.drop_height}")
-
-
-@dataclass(frozen=True)
-class SimJoint:
-    """A URDF joint that became MuJoCo degrees of freedom.
-
-    Attributes:
-        name: the URDF joint name.
-        link: its child link.
-        kind: "hinge" or "slide" (planar joints give several).
-        qpos: index into MjData.qpos; dof: index into MjData.qvel.
-        lower, upper: limits (rad or m), or None when unlimited.
-        neutral: the position the joint starts at and is held at (rad or m).
-        effort: the effort limit (N*m or N), or None.
-        mimic_of: the leader joint when this joint mimics one.
-    """
-
-    name: str
-    link: str
-    kind: str
-    qpos: int
-    dof: int
-    lower: float | None
-    upper: float | None
-    neutral: float
-    effort: float | None = None
-    mimic_of: str | None = None
-
-
-@dataclass(frozen=True)
-class SimMimic:
-    """A mimic joint as an equality constraint: follower = multiplier * leader + offset."""
-
-    follower: str
-    leader: str
-    multiplier: float
-    offset: float
-    link: str
-
-
-@dataclass(frozen=True, eq=False)
-class Scene:
-    """A compiled MuJoCo model of the robot and what maps it back to the URDF.
-
-    Attributes:
-        model: the `mujoco.MjModel`.
-        body_links: the URDF link name of each MuJoCo body ("" for the world body).
-        joints: the simulated joints, one entry per degree of freedom of each URDF joint.
-        mimics: the mimic constraints.
-        floating: the robot has a free joint (it is dropped, not fixed).
-        qpos0: the starting configuration (robot above the ground, joints at neutral).
-        robot: the robot the scene was built from.
-    """
-
-    model: Any
-    body_links: tuple[str, ...]
-    joints: tuple[SimJoint, ...]
-    mimics: tuple[SimMimic, ...]
-    floating: bool
-    qpos0: np.ndarray
-    robot: Robot
-
-    def link_span(self, link: str) -> Span | None:
-        found = self.robot.link(link)
-        return found.where.span if found is not None and found.where is not None else None
 
 
 def build_scene(robot: Robot, meshes: MeshAssets, options: SceneOptions = SceneOptions(),
@@ -239,8 +144,11 @@ class _Builder:
 
     def add_link(self, parent_body: Any, joint: Joint, children: dict[str, list[Joint]]) -> None:
         link = self.robot.link(joint.child)
+        if link is None:  # `_tree` refuses such joints first
+            raise SimModelError(f"joint '{joint.name}' connects a link that does not exist",
+                                _where(joint))
         body = parent_body.add_body(name=link.name, pos=list(joint.origin.xyz),
-                                    quat=rpy_to_quat(joint.origin.rpy))
+                                    quat=list(rpy_quaternion(joint.origin.rpy)))
         self._add_joint(body, joint)
         self.fill_body(body, link)
         for child in children.get(link.name, ()):
@@ -256,7 +164,7 @@ class _Builder:
             tensor = rotation @ np.asarray(inertial.inertia.matrix(), dtype=float) @ rotation.T
             moments, axes = principal_axes(tensor)
             body.inertia = list(moments)  # zero moments are fine on a welded link
-            body.iquat = self._quat(axes)
+            body.iquat = list(rotation_quaternion(axes.tolist()))
         if link.name in self.parts:
             self._add_parts(body, link, self.parts[link.name])
             return
@@ -285,11 +193,6 @@ class _Builder:
                 shape = Collision(None, getattr(part, "origin", Pose()), part.geometry)
                 self._add_geom(body, link, shape, index)
 
-    def _quat(self, matrix: np.ndarray) -> list[float]:
-        quat = np.zeros(4)
-        self.mujoco.mju_mat2Quat(quat, np.ascontiguousarray(matrix, dtype=float).ravel())
-        return quat.tolist()
-
     def _add_joint(self, body: Any, joint: Joint) -> None:
         kind = joint.type
         if kind == "fixed":
@@ -304,7 +207,7 @@ class _Builder:
                                 _where(joint), joint.child)
         axis = axis / norm
         if kind == "planar":
-            u, v = _perpendicular(axis)
+            u, v = (np.array(w) for w in perpendicular_axes(axis.tolist()))
             for suffix, mj_kind, direction in (("x", "slide", u), ("y", "slide", v),
                                                ("yaw", "hinge", axis)):
                 self._mj_joint(body, joint, f"{joint.name}__{suffix}", mj_kind, direction,
@@ -351,7 +254,7 @@ class _Builder:
                 self._collide(self._thin_box(body, f"{link.name}/collision{index}", placed))
                 return
         geom = body.add_geom(name=f"{link.name}/collision{index}", pos=list(shape.origin.xyz),
-                             quat=rpy_to_quat(shape.origin.rpy))
+                             quat=list(rpy_quaternion(shape.origin.rpy)))
         if isinstance(geometry, Box):
             geom.type = mujoco.mjtGeom.mjGEOM_BOX
             geom.size = [max(s, 1e-6) / 2 for s in geometry.size]
@@ -382,7 +285,7 @@ class _Builder:
         log.info("%s: flat mesh replaced by a %.3g x %.3g x %.3g m box", name, *(2 * half))
         return body.add_geom(name=name, type=self.mujoco.mjtGeom.mjGEOM_BOX,
                              size=half.tolist(), pos=position.tolist(),
-                             quat=self._quat(axes.T))
+                             quat=list(rotation_quaternion(axes.T.tolist())))
 
     def _collide(self, geom: Any) -> None:
         geom.contype = _ROBOT_BITS
@@ -397,7 +300,7 @@ class _Builder:
         if asset.file is not None:
             mesh.file = asset.file
             mesh.scale = list(asset.scale)
-        else:
+        elif asset.vertices is not None and asset.faces is not None:
             mesh.uservert = asset.vertices.ravel().tolist()
             mesh.userface = asset.faces.ravel().tolist()
         mesh.inertia = self.mujoco.mjtMeshInertia.mjMESH_INERTIA_CONVEX
@@ -420,19 +323,19 @@ class _Builder:
 
     def sim_joints(self, model: Any) -> tuple[SimJoint, ...]:
         joints = []
-        neutral_of: dict[str, float] = {}
         for name, kind, joint, link in self.joint_records:
             mj = model.joint(name)
-            limited = bool(model.jnt_limited[mj.id])
-            lower, upper = (tuple(float(v) for v in model.jnt_range[mj.id]) if limited
-                            else (None, None))
-            neutral = min(max(0.0, lower), upper) if limited else 0.0
+            lower: float | None = None
+            upper: float | None = None
+            neutral = 0.0
+            if model.jnt_limited[mj.id]:
+                low, high = (float(v) for v in model.jnt_range[mj.id])
+                lower, upper, neutral = low, high, min(max(0.0, low), high)
             mimic_of = joint.mimic.joint if joint.mimic is not None else None
             effort = joint.limit.effort if joint.limit is not None else None
             joints.append(SimJoint(name, link, kind, int(model.jnt_qposadr[mj.id]),
                                    int(model.jnt_dofadr[mj.id]), lower, upper, neutral,
                                    effort, mimic_of))
-            neutral_of[name] = neutral
         by_name = {j.name: j for j in joints}
         for mimic in self.mimics:  # a follower starts where its constraint puts it
             leader = by_name.get(mimic.leader)
@@ -482,7 +385,7 @@ def _start_configuration(mujoco: Any, model: Any, joints: tuple[SimJoint, ...],
                          fixed: bool) -> np.ndarray:
     """Joints at neutral; a free robot lifted so its lowest collision point is at the drop height."""
     data = mujoco.MjData(model)
-    qpos = model.qpos0.copy()
+    qpos: np.ndarray = model.qpos0.copy()
     for joint in joints:
         qpos[joint.qpos] = joint.neutral
     data.qpos[:] = qpos
@@ -515,32 +418,6 @@ def is_flat(vertices: np.ndarray, tolerance: float = 1e-9) -> bool:
         return True
     spread = np.linalg.svd(vertices - vertices.mean(axis=0), compute_uv=False)
     return bool(spread[-1] <= tolerance * max(float(spread[0]), 1e-300))
-
-
-def principal_axes(tensor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Principal moments (kg*m^2) and axes (columns, a proper rotation) of an inertia tensor."""
-    if not np.all(np.isfinite(tensor)):
-        return np.full(3, np.nan), np.identity(3)
-    moments, axes = np.linalg.eigh((tensor + tensor.T) / 2)
-    if np.linalg.det(axes) < 0:
-        axes[:, 2] = -axes[:, 2]
-    return moments, axes
-
-
-def rpy_to_quat(rpy: tuple[float, float, float]) -> list[float]:
-    """URDF roll-pitch-yaw (rad) as a MuJoCo quaternion (w, x, y, z)."""
-    r, p, y = (v / 2 for v in rpy)
-    cr, sr, cp, sp, cy, sy = (math.cos(r), math.sin(r), math.cos(p), math.sin(p),
-                              math.cos(y), math.sin(y))
-    return [cr * cp * cy + sr * sp * sy, sr * cp * cy - cr * sp * sy,
-            cr * sp * cy + sr * cp * sy, cr * cp * sy - sr * sp * cy]
-
-
-def _perpendicular(axis: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    helper = np.array([1.0, 0.0, 0.0]) if abs(axis[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
-    u = np.cross(axis, helper)
-    u /= np.linalg.norm(u)
-    return u, np.cross(axis, u)
 
 
 def _set_damping(joint: Any, value: float) -> None:

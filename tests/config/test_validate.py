@@ -1,49 +1,16 @@
-"""Config discovery (walk up, VCS root, robotdesc.toml before pyproject.toml) and validation."""
+"""A config table checked key by key into a `Config`; every error names the file and line."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
-from typing import Literal
 
 import pytest
 
-from robotdesc.config import Config, discover_config, find_config_file, load_config
+from robotdesc.config import load_config
 from robotdesc.diagnostics import Severity
 from robotdesc.errors import ConfigError
-from robotdesc.rules.registry import Rule
 
-
-@dataclass(frozen=True)
-class DepthOptions:
-    max_depth: int = 16
-    ratio: float = 1.0
-    names: tuple[str, ...] = ()
-    mode: Literal["fast", "slow"] = "fast"
-    limit: float | None = None
-
-    def __post_init__(self) -> None:
-        if self.max_depth < 1:
-            raise ValueError("max_depth must be at least 1")
-
-
-def _check(robot, ctx):
-    """Does nothing."""
-    return ()
-
-
-RULES = [
-    Rule("J101", "revolute-without-limit", "joints", Severity.ERROR, _check),
-    Rule("J107", "axis-not-normalised", "joints", Severity.WARNING, _check),
-    Rule("S001", "no-root-link", "structure", Severity.ERROR, _check),
-    Rule("X101", "deep-macro-recursion", "expansion", Severity.WARNING, _check, DepthOptions),
-]
-
-
-def write(path: Path, text: str) -> Path:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text, encoding="utf-8")
-    return path
+from .sample_rules import RULES, DepthOptions, write
 
 
 def test_full_pyproject_config_is_read(tmp_path: Path) -> None:
@@ -94,34 +61,6 @@ def test_defaults_when_table_is_empty(tmp_path: Path) -> None:
 def test_rule_options_may_be_keyed_by_rule_name(tmp_path: Path) -> None:
     path = write(tmp_path / "robotdesc.toml", "[rules.deep-macro-recursion]\nmax_depth = 4\n")
     assert load_config(str(path), RULES).options_for("X101").max_depth == 4
-
-
-def test_discovery_walks_up_to_the_nearest_config(tmp_path: Path) -> None:
-    write(tmp_path / "pyproject.toml", "[tool.robotdesc]\nignore = ['J']\n")
-    nested = write(tmp_path / "pkg" / "urdf" / "robot.urdf", "<robot name='r'/>")
-    assert find_config_file(str(nested)) == str(tmp_path / "pyproject.toml")
-    assert discover_config(str(nested), RULES).ignore == ("J",)
-
-
-def test_pyproject_without_robotdesc_table_is_skipped(tmp_path: Path) -> None:
-    write(tmp_path / "robotdesc.toml", "ignore = ['S']\n")
-    write(tmp_path / "pkg" / "pyproject.toml", "[tool.black]\nline-length = 90\n")
-    target = write(tmp_path / "pkg" / "robot.urdf", "<robot name='r'/>")
-    assert find_config_file(str(target)) == str(tmp_path / "robotdesc.toml")
-
-
-def test_robotdesc_toml_wins_over_pyproject_in_the_same_folder(tmp_path: Path) -> None:
-    write(tmp_path / "pyproject.toml", "[tool.robotdesc]\nignore = ['J']\n")
-    write(tmp_path / "robotdesc.toml", "ignore = ['S']\n")
-    assert find_config_file(str(tmp_path / "robot.urdf")) == str(tmp_path / "robotdesc.toml")
-
-
-def test_walk_stops_at_the_vcs_root(tmp_path: Path) -> None:
-    write(tmp_path / "robotdesc.toml", "ignore = ['S']\n")
-    (tmp_path / "repo" / ".git").mkdir(parents=True)
-    target = write(tmp_path / "repo" / "urdf" / "robot.urdf", "<robot name='r'/>")
-    assert find_config_file(str(target)) is None
-    assert discover_config(str(target), RULES) == Config()
 
 
 @pytest.mark.parametrize("text, fragment, line", [
