@@ -16,7 +16,7 @@ import sys
 from collections.abc import Callable, Sequence
 
 from robotdesc._version import __version__
-from robotdesc.commands import COMMAND_MODULES
+from robotdesc.commands import COMMAND_MODULES, modules_for
 from robotdesc.commands.inputs import EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_OK
 from robotdesc.errors import InputError
 from robotdesc.linting.result import LintFailure
@@ -27,9 +27,10 @@ BUG_REPORT_URL = "https://github.com/robotdesc/robotdesc/issues"
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit code (the console script exits with it)."""
-    parser = build_parser()
+    words = list(sys.argv[1:] if argv is None else argv)
+    parser = build_parser(words)
     try:
-        ns = parser.parse_args(argv)
+        ns = parser.parse_args(words)
     except SystemExit as exc:  # --help, --version (0) and usage errors (2)
         return exc.code if isinstance(exc.code, int) else EXIT_INPUT
     verbose: int = getattr(ns, "verbose", 0)
@@ -69,8 +70,9 @@ def _run(ns: argparse.Namespace, verbose: int) -> int:
         return EXIT_INTERNAL
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The argument parser of every subcommand (cheap: no heavy imports)."""
+def build_parser(argv: Sequence[str] | None = None) -> argparse.ArgumentParser:
+    """The argument parser (cheap: no heavy imports); given the command line, only with the
+    subcommand it names (`modules_for`), else with every subcommand."""
     parser = argparse.ArgumentParser(
         prog="robotdesc",
         description="Expand xacro without ROS, and lint robot descriptions (URDF/xacro).",
@@ -100,7 +102,8 @@ def build_parser() -> argparse.ArgumentParser:
                            help="let $(env NAME)/$(optenv NAME) see this variable in safe mode; "
                                 "repeatable")
 
-    for module in COMMAND_MODULES:  # each: register(commands, common=..., expansion=...)
+    modules = COMMAND_MODULES if argv is None else modules_for(list(argv))
+    for module in modules:  # each: register(commands, common=..., expansion=...)
         importlib.import_module(module).register(commands, common=common, expansion=expansion)
     return parser
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 
 
@@ -128,3 +129,30 @@ def decode_provenance(value: str, files: tuple[str, ...]) -> Provenance:
         span = Span(files[int(index)], int(line))
         spans.extend([span] * (int(repeat) if repeat else 1))
     return Provenance(spans[0], tuple(spans[1:]), decode_passed(passed, files) if passed else ())
+
+
+_PROVENANCE_VALUE = rb"[0-9:;*|@,A-Za-z_.\-]*"
+_PROVENANCE_ATTRIBUTE = re.compile(rb"[ \t\r\n]+" + PROVENANCE_ATTR.encode()
+                                   + rb'=(?:"' + _PROVENANCE_VALUE + rb'"|\'' + _PROVENANCE_VALUE
+                                   + rb"')")
+
+_MARKUP = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>|<[A-Za-z_:][^>]*>", re.DOTALL)
+
+
+def strip_provenance(data: bytes) -> bytes:
+    """Return the document without the private provenance attribute, otherwise unchanged.
+
+    Only start tags are edited; comments, CDATA, processing instructions and text are
+    copied byte for byte.
+    """
+    marker = PROVENANCE_ATTR.encode()
+    if marker not in data:
+        return data
+
+    def clean(match: re.Match[bytes]) -> bytes:
+        markup: bytes = match.group(0)
+        if markup[1:2] in (b"!", b"?") or marker not in markup:
+            return markup
+        return _PROVENANCE_ATTRIBUTE.sub(b"", markup)
+
+    return _MARKUP.sub(clean, data)

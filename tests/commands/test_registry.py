@@ -5,8 +5,10 @@ from __future__ import annotations
 import argparse
 import importlib
 
-from robotdesc.cli import build_parser
-from robotdesc.commands import COMMAND_MODULES
+import pytest
+
+from robotdesc.cli import build_parser, main
+from robotdesc.commands import COMMAND_MODULES, COMMANDS, modules_for
 
 
 def _subcommands(parser: argparse.ArgumentParser) -> list[str]:
@@ -29,3 +31,24 @@ def test_each_module_registers_its_commands_in_order() -> None:
             assert callable(sub.choices[name].get_default("handler")), (module, name)
         registered += found
     assert registered == names
+
+
+def test_the_declared_names_are_the_registered_ones() -> None:
+    declared = [name for _, names in COMMANDS for name in names]
+    assert declared == _subcommands(build_parser())
+
+
+def test_a_command_line_imports_only_its_command() -> None:
+    assert modules_for(["expand", "robot.urdf.xacro", "--no-cache"]) == (
+        "robotdesc.commands.expand",)
+    assert modules_for(["rule", "J101"]) == ("robotdesc.commands.rules",)
+    assert _subcommands(build_parser(["expand", "x.xacro"])) == ["expand"]
+    for everything in ([], ["--help"], ["--version"], ["lnt", "x.urdf"]):
+        assert modules_for(everything) == COMMAND_MODULES
+
+
+def test_a_typo_in_the_command_still_lists_every_command(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["lnt", "x.urdf"]) == 2
+    err = capsys.readouterr().err
+    assert "invalid choice: 'lnt'" in err and "'lint'" in err and "'srdf'" in err

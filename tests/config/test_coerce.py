@@ -8,6 +8,7 @@ from typing import Any, Literal
 import pytest
 
 from robotdesc.config.coerce import coerce, describe
+from robotdesc.diagnostics import Severity
 
 
 class Colour(enum.Enum):
@@ -28,6 +29,8 @@ class Colour(enum.Enum):
     ("slow", Literal["fast", "slow"], "slow"),
     ("red", Colour, Colour.RED),
     ("blue", Colour, Colour.BLUE),
+    ("BLUE", Colour, Colour.BLUE),
+    ("warning", Severity, Severity.WARNING),
     ({"k": 1}, Any, {"k": 1}),
 ])
 def test_accepted_values_are_converted(value: object, hint: object, expected: object) -> None:
@@ -45,6 +48,8 @@ def test_accepted_values_are_converted(value: object, hint: object, expected: ob
     ([1.0], tuple[float, float], ValueError, "expected 2 values, got 1"),
     ("medium", Literal["fast", "slow"], ValueError, "expected one of 'fast', 'slow'"),
     ("x", float | None, TypeError, "expected float | None"),
+    ("green", Colour, ValueError, "expected one of 'red', 'blue', got 'green'"),
+    ("fatal", Severity, ValueError, "expected one of 'info', 'warning', 'error'"),
 ])
 def test_wrong_values_are_refused(value: object, hint: object, error: type[Exception],
                                   fragment: str) -> None:

@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from robotdesc.expansion import ExpandOptions, expand_file
-from robotdesc.model.parse import strip_provenance
+from robotdesc.source import strip_provenance
 
 HERE = Path(__file__).parent
 REPO = HERE.parents[1]

@@ -15,8 +15,7 @@ import pytest
 from lxml import etree
 
 from robotdesc.expansion import ExpandOptions, expand_file
-from robotdesc.model.parse import strip_provenance
-from robotdesc.source import PROVENANCE_ATTR, PassedValue, Span, decode_provenance
+from robotdesc.source import PROVENANCE_ATTR, PassedValue, Span, decode_provenance, strip_provenance
 
 ROBOT = """<?xml version="1.0"?>
 <robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">

@@ -18,8 +18,8 @@ from robotdesc.model.elements import (
     Pose,
     Sphere,
 )
-from robotdesc.model.parse import parse_urdf, strip_provenance
-from robotdesc.source import PROVENANCE_ATTR, Provenance, Span, decode_provenance
+from robotdesc.model.parse import parse_urdf
+from robotdesc.source import PROVENANCE_ATTR, Provenance, Span, decode_provenance, strip_provenance
 
 FULL = b"""<?xml version="1.0"?>
 <robot name="arm">

@@ -79,7 +79,14 @@ def _scalar(value: Any, hint: Any) -> Any:
         try:
             return hint(value)
         except ValueError:
-            return hint[str(value).upper()]
+            pass
+        by_name = {member.name.lower(): member for member in hint}
+        found = by_name.get(str(value).lower())
+        if found is None:
+            allowed = ", ".join(repr(member.value if isinstance(member.value, str)
+                                     else member.name.lower()) for member in hint)
+            raise ValueError(f"expected one of {allowed}, got {value!r}")
+        return found
     if isinstance(hint, type) and not isinstance(value, hint):
         raise TypeError(f"expected {describe(hint)}, got {value!r}")
     return value

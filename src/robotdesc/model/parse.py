@@ -54,19 +54,13 @@ from robotdesc.source import (
     Span,
     decode_passed,
     decode_provenance,
+    strip_provenance,  # noqa: F401  (re-exported: its old home)
 )
 from robotdesc.xml_input import XmlOptions, parse_xml, start_tag_positions
 
 log = logging.getLogger(__name__)
 
 _Read = TypeVar("_Read")
-
-_PROVENANCE_VALUE = rb"[0-9:;*|@,A-Za-z_.\-]*"
-_PROVENANCE_ATTRIBUTE = re.compile(rb"[ \t\r\n]+" + PROVENANCE_ATTR.encode()
-                                   + rb'=(?:"' + _PROVENANCE_VALUE + rb'"|\'' + _PROVENANCE_VALUE
-                                   + rb"')")
-
-_MARKUP = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>|<[A-Za-z_:][^>]*>", re.DOTALL)
 
 _ZERO: Vec3 = (0.0, 0.0, 0.0)
 _DESCRIPTION = XmlOptions(what="robot description")
@@ -104,25 +98,6 @@ def parse_urdf(data: bytes, path: str, files: tuple[str, ...] = ()) -> Robot:
         raise InputError(f"the root element is <{_tag(root)}>, expected <robot>",
                          Span(path, line, col))
     return _RobotReader(path, files, positions).robot(root)
-
-
-def strip_provenance(data: bytes) -> bytes:
-    """Return the document without the private provenance attribute, otherwise unchanged.
-
-    Only start tags are edited; comments, CDATA, processing instructions and text are
-    copied byte for byte.
-    """
-    marker = PROVENANCE_ATTR.encode()
-    if marker not in data:
-        return data
-
-    def clean(match: re.Match[bytes]) -> bytes:
-        markup: bytes = match.group(0)
-        if markup[1:2] in (b"!", b"?") or marker not in markup:
-            return markup
-        return _PROVENANCE_ATTRIBUTE.sub(b"", markup)
-
-    return _MARKUP.sub(clean, data)
 
 
 def _tag(element: etree._Element) -> str:

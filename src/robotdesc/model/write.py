@@ -7,8 +7,7 @@ import os
 from lxml import etree
 
 from robotdesc.errors import XmlSyntaxError
-from robotdesc.model.parse import strip_provenance
-from robotdesc.source import PROVENANCE_ATTR, Span
+from robotdesc.source import PROVENANCE_ATTR, Span, strip_provenance
 from robotdesc.xml_input import XmlOptions, parse_xml
 
 _KEEP_COMMENTS = XmlOptions(remove_comments=False, remove_pis=False, remove_blank_text=True,

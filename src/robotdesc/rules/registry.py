@@ -15,11 +15,12 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 from robotdesc.diagnostics import Finding, Severity
 from robotdesc.expansion.result import ExpansionNote, MacroRecursion
-from robotdesc.inertia.mesh_access import MeshAccess
-from robotdesc.model.elements import Robot
 
 if TYPE_CHECKING:
     from _typeshed import DataclassInstance
+
+    from robotdesc.inertia.mesh_access import MeshAccess  # annotations only: a lint imports
+    from robotdesc.model.elements import Robot  # them anyway, a config check need not
 
 #: A rule's options: an instance of the frozen dataclass it registered (`rule(options=...)`).
 OptionsT = TypeVar("OptionsT", bound="DataclassInstance")
@@ -85,7 +86,7 @@ class RuleContext:
         return self.options
 
 
-CheckFunction = Callable[[Robot, RuleContext], Iterable[Finding]]
+CheckFunction = Callable[["Robot", "RuleContext"], Iterable[Finding]]
 
 
 @dataclass(frozen=True)
