@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import dataclasses
 import sys
-from typing import TYPE_CHECKING, Mapping, Sequence
+from typing import TYPE_CHECKING, Any, Literal, Mapping, Sequence
 
 from robotdesc._version import __version__
 
@@ -26,18 +26,23 @@ if "IPython" in sys.modules:  # a notebook: results render as the report's table
     _notebook.register()
 
 if TYPE_CHECKING:  # pragma: no cover
+    import os
+
+    from robotdesc.collision.result import CollisionResult
     from robotdesc.config import Config
     from robotdesc.expansion.result import Expanded
     from robotdesc.inertia.table import InertiaTable
     from robotdesc.linting.result import LintResult
     from robotdesc.model.elements import Robot
+    from robotdesc.view.show import View
 
 
 __all__ = ["__version__", "expand", "generate_collision", "html_report", "json_report", "lint",
            "load", "mesh_inertia", "show", "to_urdf"]
 
 
-def generate_collision(robot: "Robot", method: str = "decimate", **options):
+def generate_collision(robot: "Robot", method: str = "decimate",
+                       **options: Any) -> "CollisionResult":
     """Collision geometry per link, measured; see `robotdesc.collision.generate`.
 
     Returns a `CollisionResult` (new geometry and a per-link report); `robot` is not
@@ -69,14 +74,14 @@ def to_urdf(source: "str | Expanded", args: Mapping[str, str] | None = None, *,
     return urdf_text(expanded.xml, expanded.source).decode("utf-8")
 
 
-def json_report(*results: "LintResult") -> dict:
+def json_report(*results: "LintResult") -> dict[str, object]:
     """The document of `robotdesc lint --format json` for `lint` results, as a dict."""
     from robotdesc.report.json import report_dict
 
     return report_dict(results)
 
 
-def html_report(result: "LintResult", collision=None, *,
+def html_report(result: "LintResult", collision: "CollisionResult | None" = None, *,
                 joint_values: Mapping[str, float] | None = None, view: bool = True,
                 package_paths: Sequence[str] = ()) -> str:
     """The self-contained HTML page of `robotdesc report` for a `lint` result.
@@ -139,7 +144,8 @@ def load(path: str, args: Mapping[str, str] | None = None,
     return parse_urdf(expanded.xml, expanded.source, expanded.files)
 
 
-def mesh_inertia(path: str, args: Mapping[str, str] | None = None, *, source: str | None = None,
+def mesh_inertia(path: str, args: Mapping[str, str] | None = None, *,
+                 source: Literal["collision", "visual"] | None = None,
                  package_paths: Sequence[str] = ()) -> "InertiaTable":
     """Declared against mesh-derived mass, centre of mass and principal moments per link.
 
@@ -203,7 +209,8 @@ def lint(path: str, args: Mapping[str, str] | None = None, *,
                      ignore=ignore)
 
 
-def show(target, joint_values: Mapping[str, float] | None = None, **options):
+def show(target: "str | os.PathLike[str] | Robot | LintResult",
+         joint_values: Mapping[str, float] | None = None, **options: Any) -> "View":
     """A 3D view of a robot (a file, a `Robot` or a `LintResult`) at a configuration.
 
     Returns a `robotdesc.view.show.View`: displayed inline in Jupyter, `.save("robot.html")`

@@ -18,7 +18,8 @@ import os
 import signal
 import stat
 import threading
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
+from types import FrameType
 
 log = logging.getLogger(__name__)
 
@@ -144,7 +145,8 @@ def _signals_remove(temporary: str) -> Iterator[None]:
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    previous: dict[int, object] = {}
+    # signal -> its handler before (what `signal.signal` takes back)
+    previous: dict[int, Callable[[int, FrameType | None], object] | int | None] = {}
 
     def abort(signum: int, frame: object) -> None:
         raise _Signalled(signum)
@@ -164,8 +166,8 @@ def _signals_remove(temporary: str) -> Iterator[None]:
         caught = signalled.signum
         log.debug("signal %d during the write of %s: temporary removed", caught, temporary)
     finally:
-        for signum, old in previous.items():
-            signal.signal(signum, old)  # type: ignore[arg-type]
+        for number, handler in previous.items():
+            signal.signal(number, handler)
     if caught is not None:
         _deliver(caught, previous.get(caught))
 

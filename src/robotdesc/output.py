@@ -217,8 +217,8 @@ def _explain(path: str, error: OSError, folder: str | None = None) -> OutputErro
         return OutputError(path, "it is a folder")
     if code in (errno.EACCES, errno.EPERM, errno.EROFS):
         where = folder or os.path.dirname(os.path.abspath(path))
-        return OutputError(path, f"{error.strerror.lower()} (is the folder {where} "
-                                 "read-only?)")
+        reason = (error.strerror or str(error)).lower()
+        return OutputError(path, f"{reason} (is the folder {where} read-only?)")
     return OutputError(path, (error.strerror or str(error)).lower())
 
 

@@ -146,7 +146,9 @@ def doctype_offset(data: bytes) -> int:
     at = 3 if data.startswith(b"\xef\xbb\xbf") else 0
     size = len(data)
     while at < size:
-        at = _WHITESPACE.match(data, at).end()
+        blank = _WHITESPACE.match(data, at)
+        assert blank is not None  # `*`: it matches the empty string
+        at = blank.end()
         if data.startswith(b"<?", at):
             end = data.find(b"?>", at + 2)
             at = size if end < 0 else end + 2

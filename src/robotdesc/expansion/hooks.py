@@ -15,12 +15,30 @@ import os
 import re
 import xml.dom
 import xml.dom.expatbuilder
+import xml.parsers.expat
 from dataclasses import dataclass, field
-from typing import Callable
+from typing import TYPE_CHECKING, Callable, NoReturn, cast
+from xml.dom.minidom import Document, Element, Node
 
 from robotdesc.expansion.install_layout import source_of_installed
 from robotdesc.expansion.packages import split_package_uri
 from robotdesc.source import PASSED_SEPARATOR, PROVENANCE_ATTR, compress_chain, encode_passed
+
+if TYPE_CHECKING:
+    from typing import Protocol
+
+    from xacro import Table  # xacro ships no types: its macro and symbol tables
+
+    class _Linked(Protocol):
+        """The links of a minidom node that `splice_replace_node` rewrites (typeshed types
+        them per node kind; the splice treats every kind alike)."""
+
+        parentNode: _Linked | None
+        previousSibling: _Linked | None
+        nextSibling: _Linked | None
+        childNodes: list[_Linked]
+
+        def removeChild(self, oldChild: _Linked) -> object: ...
 
 _ELEMENT = xml.dom.Node.ELEMENT_NODE
 
@@ -105,22 +123,27 @@ def _make_builder(state: ExpansionState, path: str) -> xml.dom.expatbuilder.Expa
     index = state.file_index(path)
 
     class TaggingBuilder(xml.dom.expatbuilder.ExpatBuilderNS):
-        def start_element_handler(self, name, attributes):  # noqa: D401 (expat callback)
-            super().start_element_handler(name, attributes)
-            self.curNode.setAttribute(PROVENANCE_ATTR, f"{index}:{self._parser.CurrentLineNumber}")
+        _parser: xml.parsers.expat.XMLParserType  # set by ExpatBuilder (not in its stubs)
 
-        def start_doctype_decl_handler(self, *args):
+        def start_element_handler(self, name: str,  # noqa: D401 (expat callback)
+                                  attributes: list[str]) -> None:
+            super().start_element_handler(name, attributes)
+            element = cast(Element, self.curNode)  # the element just started
+            element.setAttribute(PROVENANCE_ATTR, f"{index}:{self._parser.CurrentLineNumber}")
+
+        def start_doctype_decl_handler(self, *args: object) -> NoReturn:
             raise DoctypeRefused(path, self._parser.CurrentLineNumber,
                                  self._parser.CurrentColumnNumber + 1)
 
-        def entity_decl_handler(self, *args):
+        def entity_decl_handler(self, *args: object) -> NoReturn:
             raise DoctypeRefused(path, self._parser.CurrentLineNumber,
                                  self._parser.CurrentColumnNumber + 1)
 
     return TaggingBuilder()
 
 
-def splice_replace_node(node, by, content_only=False):
+def splice_replace_node(node: Node, by: Node | list[Node] | None,
+                        content_only: bool = False) -> None:
     """xacro's `replace_node` in linear time: the same result, one splice of the child list.
 
     xacro moves each expanded node with minidom's `insertBefore`, which searches the parent's
@@ -128,18 +151,20 @@ def splice_replace_node(node, by, content_only=False):
     xacro's super-linear time on long robots). This computes the new nodes once, detaches them,
     and splices them in place of `node`, fixing parent and sibling links.
     """
-    parent = node.parentNode
-    moved = []
-    for source in ([] if by is None else by if isinstance(by, list) else [by]):
+    target = cast("_Linked", node)
+    parent = cast("_Linked", node.parentNode)  # xacro replaces nodes inside the tree
+    moved: list[_Linked] = []
+    for source in cast("list[_Linked]",
+                       [] if by is None else by if isinstance(by, list) else [by]):
         if content_only:
             children = list(source.childNodes)
             source.childNodes[:] = []
             moved.extend(children)
         else:
-            if source.parentNode is not None and source is not node:
+            if source.parentNode is not None and source is not target:
                 source.parentNode.removeChild(source)
             moved.append(source)
-    index = parent.childNodes.index(node)
+    index = parent.childNodes.index(target)
     parent.childNodes[index:index + 1] = moved
     before = parent.childNodes[index - 1] if index > 0 else None
     after_index = index + len(moved)
@@ -155,7 +180,7 @@ def splice_replace_node(node, by, content_only=False):
         previous.nextSibling = after
     if after is not None:
         after.previousSibling = previous
-    node.parentNode = node.previousSibling = node.nextSibling = None
+    target.parentNode = target.previousSibling = target.nextSibling = None
 
 
 def install(state: ExpansionState, find_package: Callable[[str], str],
@@ -170,22 +195,24 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
     import xacro
     import xacro.substitution_args as subst
 
-    original_eval_all = xacro.eval_all
-    original_macro_call = xacro.handle_macro_call
-    original_check_attrs = xacro.check_attrs
-    original_abs_filename = xacro.abs_filename_spec
+    original_eval_all: Callable[[Element, Table, Table], None] = xacro.eval_all
+    original_macro_call: Callable[[Element, Table, Table], bool] = xacro.handle_macro_call
+    original_check_attrs: Callable[[Element, list[str], list[str]], list[str | None]] = \
+        xacro.check_attrs
+    original_abs_filename: Callable[[object], str] = xacro.abs_filename_spec
 
     found_packages: dict[str, str] = {}  # name -> folder, as `$(find)` answered
 
-    def find(package):
+    def find(package: str) -> str:
         folder = find_package(package)
         found_packages[package] = folder
         return folder
 
-    def parse(inp, filename=None):
+    def parse(inp: str | bytes | Document | None, filename: str | None = None) -> Document:
         if inp is not None:
             return inp if not isinstance(inp, (str, bytes)) else _parse_text(inp)
-        path = os.path.abspath(os.path.join(xacro.root_dir, filename))
+        # xacro reads a file by name only: parse(None, filename)
+        path = os.path.abspath(os.path.join(xacro.root_dir, cast(str, filename)))
         if not os.path.exists(path):
             path = _installed_source(path) or path
         check_file(path)
@@ -200,10 +227,10 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
             xacro.filestack.pop()
             raise xacro.XacroException(f"{exc.strerror}: {filename}", exc=exc)
         except xml.parsers.expat.ExpatError as exc:
-            exc.robotdesc_path = path
+            setattr(exc, "robotdesc_path", path)  # read by the worker
             raise
 
-    def _installed_source(path):
+    def _installed_source(path: str) -> str | None:
         """The source file of a path that exists only in a package's installed layout."""
         for package, folder in found_packages.items():
             root = os.path.join(os.path.abspath(folder), "")
@@ -211,10 +238,10 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
                 return source_of_installed(root.rstrip(os.sep), package, path[len(root):])
         return None
 
-    def _parse_text(text):
+    def _parse_text(text: str | bytes) -> Document:
         return _make_builder(state, "<string>").parseString(text)
 
-    def eval_all(node, macros, symbols):
+    def eval_all(node: Element, macros: Table, symbols: Table) -> None:
         previous = state.last_src
         body = node.nodeType == _ELEMENT and node.tagName == "xacro:macro" and state.pending_frames
         if body:
@@ -238,7 +265,7 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
                 state.frames.pop()
         state.last_src = previous
 
-    def _passed_values(node) -> dict[str, str]:
+    def _passed_values(node: Element) -> dict[str, str]:
         """Attribute -> call site, for the attributes whose text uses a macro parameter."""
         frame = state.frames[-1]
         passed: dict[str, str] = {}
@@ -253,7 +280,7 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
                 passed[f"{tag}.{name}"] = site
         return passed
 
-    def _call_frame(node, own: str) -> dict[str, str]:
+    def _call_frame(node: Element, own: str) -> dict[str, str]:
         """Parameter -> where its value was written, for a macro call about to run."""
         outer = state.frames[-1] if state.frames else {}
         frame: dict[str, str] = {}
@@ -263,7 +290,7 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
             frame[name] = next((outer[used] for used in _names(text) if used in outer), own)
         return frame
 
-    def handle_macro_call(node, macros, symbols):
+    def handle_macro_call(node: Element, macros: Table, symbols: Table) -> bool:
         if node.tagName == "xacro:call" or not node.tagName.startswith("xacro:"):
             return original_macro_call(node, macros, symbols)
         own = _site(node.getAttribute(PROVENANCE_ATTR))
@@ -284,7 +311,7 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
             state.call_stack.pop()
             state._depth[name] -= 1
 
-    def _enter_macro(name, own, macros, symbols):
+    def _enter_macro(name: str, own: str, macros: Table, symbols: Table) -> None:
         if len(state.call_stack) >= state.max_macro_depth:
             state.capture_error()
             raise MacroTooDeep(
@@ -303,7 +330,8 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
             outermost = next(src for src, called in state.call_stack if called == name)
             state.recursion[name] = (depth, defined, outermost)
 
-    def check_attrs(tag, required, optional):
+    def check_attrs(tag: Element, required: list[str],
+                    optional: list[str]) -> list[str | None]:
         src = tag.getAttribute(PROVENANCE_ATTR)
         state.last_src = _site(src) or state.last_src
         if tag.tagName == "xacro:arg" and tag.hasAttribute("name"):
@@ -317,13 +345,14 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
             if tag.tagName == "xacro:macro":  # keep the definition line with the macro body
                 tag.setAttribute(PROVENANCE_ATTR, src)
 
-    def abs_filename_spec(filename_spec):
+    def abs_filename_spec(filename_spec: object) -> str:
         if isinstance(filename_spec, str) and filename_spec.startswith("package://"):
-            package, rel, _ = split_package_uri(filename_spec)
+            # never None for a "package://" string
+            package, rel, _ = cast("tuple[str, str, bool]", split_package_uri(filename_spec))
             return os.path.join(find(package), rel)
         return original_abs_filename(filename_spec)
 
-    def eval_find(package):
+    def eval_find(package: str) -> str:
         return find(package)
 
     xacro.parse = parse
@@ -336,9 +365,10 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
     subst._eval_dict["find"] = eval_find
     xacro._global_symbols.setdefault("find", eval_find)  # ${find('pkg')}, as ROS 2 files use
 
-    def xacro_arg(name):  # ${xacro.arg('name')}: the same error as $(arg name)
+    def xacro_arg(name: str) -> str:  # ${xacro.arg('name')}: the same error as $(arg name)
         try:
-            return xacro.substitution_args_context["arg"][name]
+            passed: dict[str, str] = xacro.substitution_args_context["arg"]
+            return passed[name]
         except KeyError:
             raise subst.ArgException(name) from None
 
@@ -359,7 +389,7 @@ def install_environment(env: dict[str, str], safe: bool, state: ExpansionState,
     """
     import xacro.substitution_args as subst
 
-    def eval_env(name):
+    def eval_env(name: str) -> str:
         if name in env:
             return env[name]
         if safe and name in set_names:
@@ -369,7 +399,7 @@ def install_environment(env: dict[str, str], safe: bool, state: ExpansionState,
         hint = " (not in the safe-mode allowlist; add it with --env NAME or use --trusted)" if safe else ""
         raise subst.SubstitutionException(f"environment variable {name} is not set{hint}")
 
-    def eval_optenv(name, default=""):
+    def eval_optenv(name: str, default: str = "") -> str:
         if name in env:
             return env[name]
         state.env_defaults.append((name, default, state.last_src))

@@ -18,6 +18,8 @@ import traceback
 import xml.dom.expatbuilder
 import xml.dom.minidom
 import xml.parsers.expat
+from collections.abc import Iterable, Iterator
+from typing import TYPE_CHECKING, cast
 
 import xacro
 import xacro.substitution_args
@@ -27,19 +29,52 @@ from robotdesc.expansion import confine, hooks, sandbox
 from robotdesc.expansion.packages import PackageResolver, PackageResolverConfig
 from robotdesc.expansion.result import ResolvedPackage
 
+if TYPE_CHECKING:
+    from typing import TypedDict
+
+    class _ResolverSettings(TypedDict):
+        """`PackageResolverConfig`'s fields, as the worker rebuilds them from the job."""
+
+        origin: str
+        package_paths: tuple[str, ...]
+        package_map: tuple[tuple[str, str], ...]
+        ros_package_path: str
+        ament_prefix_path: str
+
+    class _JobBase(TypedDict):
+        """The job the runner sends (JSON: tuples arrive as lists)."""
+
+        file: str
+        args: list[list[str]]
+        resolver: dict[str, object]
+        trusted: bool
+        env: dict[str, str]
+        memory_mb: int
+        cpu_seconds: int
+        max_macro_depth: int
+        max_output_bytes: int
+        known: list[list[str]]
+        data_roots: list[str]
+        guard_roots: list[str]
+
+    class _Job(_JobBase, total=False):
+        env_names: list[str]
+
 #: Stack for the expansion thread: xacro recurses once per nested element and macro call.
 _THREAD_STACK_BYTES = 256 * 1024 * 1024
 _RECURSION_LIMIT = 200_000
 
 
-def _span(src: str, files: list[str]) -> list | None:
+def _span(src: str, files: list[str]) -> list[str | int] | None:
+    """[file, line, column] of a "FILE_INDEX:LINE" provenance value."""
     if not src:
         return None
     index, _, line = src.partition(":")
     return [files[int(index)], int(line), 0]
 
 
-def _failure(kind: str, message: str, span=None, chain=()) -> dict:
+def _failure(kind: str, message: str, span: list[str | int] | None = None,
+             chain: Iterable[list[str | int] | None] = ()) -> dict[str, object]:
     return {"ok": False, "kind": kind, "message": message, "span": span, "call_stack": list(chain)}
 
 
@@ -55,13 +90,14 @@ def _root_cause(exc: BaseException) -> BaseException:
     return exc
 
 
-def _chain(exc: BaseException):
+def _chain(exc: BaseException) -> Iterator[BaseException]:
     """`exc` and every exception it wraps or was raised from."""
     seen = set()
-    while isinstance(exc, BaseException) and id(exc) not in seen:
-        seen.add(id(exc))
-        yield exc
-        exc = getattr(exc, "exc", None) or exc.__cause__ or exc.__context__
+    item: object = exc
+    while isinstance(item, BaseException) and id(item) not in seen:
+        seen.add(id(item))
+        yield item
+        item = getattr(item, "exc", None) or item.__cause__ or item.__context__
 
 
 def _os_refusal(exc: BaseException, guard: sandbox.Guard | None) -> BaseException | None:
@@ -142,7 +178,8 @@ def _message(exc: BaseException, guard: sandbox.Guard | None = None,
     return text if len(text) < 2000 else text[:2000] + "..."
 
 
-def _bounded(chain: tuple, keep_inner: int = 8, keep_outer: int = 4) -> tuple:
+def _bounded(chain: tuple[str, ...], keep_inner: int = 8,
+             keep_outer: int = 4) -> tuple[str, ...]:
     """At most a dozen call sites: the innermost and the outermost ones."""
     if len(chain) <= keep_inner + keep_outer:
         return chain
@@ -156,14 +193,16 @@ class _UnknownPackage(Exception):
         self.name = name
 
 
-def _resolver(job: dict) -> PackageResolver:
+def _resolver(job: _Job) -> PackageResolver:
     settings = {k: tuple(tuple(x) if isinstance(x, list) else x for x in v) if isinstance(v, list)
                 else v for k, v in job["resolver"].items()}
     known = [ResolvedPackage(*entry) for entry in job["known"]]
-    return PackageResolver(PackageResolverConfig(**settings), known=known)
+    # JSON lists made tuples again: the fields of `dataclasses.asdict(PackageResolverConfig)`
+    return PackageResolver(PackageResolverConfig(**cast("_ResolverSettings", settings)),
+                           known=known)
 
 
-def run_job(job: dict, guard: sandbox.Guard) -> dict:
+def run_job(job: _Job, guard: sandbox.Guard) -> dict[str, object]:
     """Expand the job's file; return the result dictionary."""
     resolver = _resolver(job)
     top = os.path.abspath(job["file"])
@@ -201,8 +240,8 @@ def run_job(job: dict, guard: sandbox.Guard) -> dict:
         return _failure("XmlSyntaxError", f"malformed XML: {message}", [path, exc.lineno, exc.offset + 1])
     except BaseException as exc:  # noqa: BLE001 -- every failure is reported, none is hidden
         src, chain = state.error_src or (state.last_src, ())
-        if isinstance(_root_cause(exc), xml.parsers.expat.ExpatError):
-            cause = _root_cause(exc)
+        cause = _root_cause(exc)
+        if isinstance(cause, xml.parsers.expat.ExpatError):
             path = getattr(cause, "robotdesc_path", top)
             return _failure("XmlSyntaxError", f"malformed XML: {xml.parsers.expat.ErrorString(cause.code)}",
                             [path, cause.lineno, cause.offset + 1])
@@ -225,7 +264,7 @@ def run_job(job: dict, guard: sandbox.Guard) -> dict:
 
 def main() -> None:
     """Read the job, confine this process (safe mode), expand in a thread, answer."""
-    job = json.loads(sys.stdin.read())
+    job: _Job = json.loads(sys.stdin.read())
     sandbox.apply_limits(job["memory_mb"], job["cpu_seconds"])
     guard = sandbox.Guard(safe=not job["trusted"], code_roots=confine.code_roots())
     sandbox.install(guard)
@@ -233,7 +272,7 @@ def main() -> None:
     sys.stdout = sys.stderr  # xacro prints; keep stdout for the result
     sys.setrecursionlimit(_RECURSION_LIMIT)
     threading.stack_size(_THREAD_STACK_BYTES)
-    outcome: dict = {}
+    outcome: dict[str, object] = {}
     if guard.safe:
         try:  # before any xacro expression runs and before the expansion thread starts
             confine.confine(job["data_roots"], guard.code_roots)

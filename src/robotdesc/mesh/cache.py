@@ -83,8 +83,8 @@ class MeshCache:
         index_file = _shard(self._stats, path_key)
         known = _read_json(index_file)
         if isinstance(known, dict) and known.get("key") == path_key \
-                and known.get("stamp") == stamp and isinstance(known.get("digest"), str):
-            return known["digest"]
+                and known.get("stamp") == stamp and isinstance(stored := known.get("digest"), str):
+            return stored
         digest = _hash_file(path)
         if digest is not None:
             self._write(index_file, {"key": path_key, "stamp": stamp, "digest": digest})

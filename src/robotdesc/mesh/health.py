@@ -52,7 +52,8 @@ class Topology:
     @property
     def edge_balance(self) -> np.ndarray:
         """Per distinct edge, (uses low -> high) - (uses high -> low)."""
-        return 2 * self.edge_forward - self.edge_uses
+        balance: np.ndarray = 2 * self.edge_forward - self.edge_uses
+        return balance
 
 
 def topology(triangles: np.ndarray) -> Topology:
@@ -167,7 +168,9 @@ def hole_caps(topo: Topology) -> np.ndarray:
     labels = _loop_labels(a, b, len(topo.vertices))
     _, loop = np.unique(labels[a], return_inverse=True)
     weights = np.bincount(loop)
-    centroid = np.stack([np.bincount(loop, topo.vertices[a][:, k]) for k in range(3)], axis=1)
+    # float: weighted counts (numpy's stubs type every bincount as integer)
+    centroid: np.ndarray = np.stack([np.bincount(loop, topo.vertices[a][:, k]) for k in range(3)],
+                                    axis=1)
     centroid /= weights[:, None]
     return np.stack([centroid[loop], topo.vertices[b], topo.vertices[a]], axis=1)
 
@@ -210,8 +213,9 @@ def merge_vertices(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _repeated(faces: np.ndarray) -> np.ndarray:
-    return ((faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2])
-            | (faces[:, 2] == faces[:, 0]))
+    repeated: np.ndarray = ((faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2])
+                            | (faces[:, 2] == faces[:, 0]))
+    return repeated
 
 
 def _loop_labels(a: np.ndarray, b: np.ndarray, vertex_count: int) -> np.ndarray:
@@ -220,6 +224,7 @@ def _loop_labels(a: np.ndarray, b: np.ndarray, vertex_count: int) -> np.ndarray:
     from scipy.sparse.csgraph import connected_components
 
     graph = coo_matrix((np.ones(len(a)), (a, b)), shape=(vertex_count, vertex_count))
+    labels: np.ndarray
     _, labels = connected_components(graph, directed=False)
     return labels
 
@@ -264,4 +269,5 @@ def _tiny_area(triangles: np.ndarray) -> np.ndarray:
     low, high = bounds(triangles)
     diagonal_sq = float(np.sum((np.asarray(high) - np.asarray(low)) ** 2))
     threshold = 2.0 * DEGENERATE_AREA_FRACTION * diagonal_sq
-    return doubled_area_sq <= threshold * threshold
+    tiny: np.ndarray = doubled_area_sq <= threshold * threshold
+    return tiny

@@ -16,6 +16,7 @@ import stat
 import warnings
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -33,6 +34,9 @@ from robotdesc.mesh.validate import (
     validate_triangles,
 )
 from robotdesc.xml_input import XmlOptions, parse_xml
+
+if TYPE_CHECKING:
+    import collada  # pycollada (untyped); imported where a .dae is read
 
 _COLLADA = XmlOptions(what="COLLADA file")
 #: How the guarded parser's message for a text node over libxml2's limit begins.
@@ -199,7 +203,7 @@ def _read_collada(name: str, limits: MeshLimits
             unit_meter, broken)
 
 
-def _collada_document(data: bytes):
+def _collada_document(data: bytes) -> collada.Collada:
     """A pycollada document; unsupported features and broken references are recorded in
     its `errors`, not raised."""
     import collada  # lazy: pycollada is only needed for .dae files
@@ -208,7 +212,7 @@ def _collada_document(data: bytes):
                                                       collada.common.DaeBrokenRefError])
 
 
-def _broken_references(document, name: str) -> tuple[str, ...]:
+def _broken_references(document: collada.Collada, name: str) -> tuple[str, ...]:
     """pycollada's broken references, and texture images whose file does not exist."""
     import collada
 
@@ -223,7 +227,8 @@ def _broken_references(document, name: str) -> tuple[str, ...]:
     return tuple(dict.fromkeys(found))
 
 
-def _collada_parts(document, name: str, limits: MeshLimits) -> Iterator[tuple[int, np.ndarray]]:
+def _collada_parts(document: collada.Collada, name: str,
+                   limits: MeshLimits) -> Iterator[tuple[int, np.ndarray]]:
     """(body id, triangles) per bound primitive; all geometries untransformed if no scene."""
     import collada
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 import re
+from typing import BinaryIO
 
 import numpy as np
 
@@ -77,7 +78,7 @@ def _is_binary(head: bytes, size: int) -> bool:
     return size == _HEADER_BYTES + _COUNT_BYTES + _RECORD_BYTES * count
 
 
-def _read_binary(handle, size: int, name: str, limits: MeshLimits) -> np.ndarray:
+def _read_binary(handle: BinaryIO, size: int, name: str, limits: MeshLimits) -> np.ndarray:
     count = (size - _HEADER_BYTES - _COUNT_BYTES) // _RECORD_BYTES
     check_triangle_count(count, name, limits)
     records = np.fromfile(handle, dtype=_RECORD, count=count)

@@ -20,6 +20,7 @@ through the cache in `robotdesc.mesh.analyze`; both are re-exported here.
 from __future__ import annotations
 
 import logging
+from typing import TypedDict
 
 import numpy as np
 
@@ -37,6 +38,17 @@ log = logging.getLogger(__name__)
 FLAT_VOLUME_FRACTION = 1e-9
 
 
+class _Common(TypedDict):
+    """The `MeshSummary` fields that do not depend on how the mass properties were found."""
+
+    signed_volume: float
+    bounds: tuple[Vec3, Vec3]
+    health: MeshHealth
+    unit_meter: float
+    bodies: int
+    broken_references: tuple[str, ...]
+
+
 def summarize(mesh: LoadedMesh) -> MeshSummary:
     """Compute the summary of a loaded mesh (pure: no I/O)."""
     triangles = mesh.triangles
@@ -45,9 +57,9 @@ def summarize(mesh: LoadedMesh) -> MeshSummary:
     box = bounds(triangles)
     integrals = volume_integrals(triangles)
     signed = integrals.volume
-    common = {"signed_volume": signed, "bounds": box, "health": health,
-              "unit_meter": mesh.unit_meter, "bodies": mesh.bodies,
-              "broken_references": mesh.broken_references}
+    common: _Common = {"signed_volume": signed, "bounds": box, "health": health,
+                       "unit_meter": mesh.unit_meter, "bodies": mesh.bodies,
+                       "broken_references": mesh.broken_references}
     if health.encloses_volume and not _flat(signed, box):
         return _oriented(integrals, MassMethod.EXACT, (), common)
     if (health.boundary_edges and not health.misoriented_edges
@@ -68,7 +80,7 @@ def summarize(mesh: LoadedMesh) -> MeshSummary:
 
 
 def _oriented(integrals: VolumeIntegrals, method: MassMethod, notes: tuple[str, ...],
-              common: dict) -> MeshSummary:
+              common: _Common) -> MeshSummary:
     """The summary from integrals of a closed surface, reversing an inverted one."""
     if integrals.volume > 0:
         return MeshSummary(integrals.properties(), method, notes=notes, **common)
