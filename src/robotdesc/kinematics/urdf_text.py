@@ -9,7 +9,6 @@ so no ROS lookup happens; a mesh that does not resolve is left out (other rules 
 from __future__ import annotations
 
 from collections.abc import Callable
-from xml.sax.saxutils import quoteattr
 
 from robotdesc.model.elements import (
     Box,
@@ -25,6 +24,7 @@ from robotdesc.model.elements import (
     Robot,
     Sphere,
 )
+from robotdesc.xml_text import quote_attribute
 
 #: Resolves a mesh reference to an absolute file path, or None.
 MeshPath = Callable[[MeshRef], "str | None"]
@@ -51,7 +51,7 @@ def _geometry(geometry: Geometry, mesh_path: MeshPath) -> str | None:
         path = mesh_path(geometry)
         if path is None:
             return None
-        return f'<mesh filename={quoteattr(path)} scale="{_numbers(geometry.scale)}"/>'
+        return f'<mesh filename={quote_attribute(path)} scale="{_numbers(geometry.scale)}"/>'
     return None
 
 
@@ -71,13 +71,13 @@ def _collision(collision: Collision, mesh_path: MeshPath) -> list[str]:
     shape = _geometry(collision.geometry, mesh_path) if collision.geometry else None
     if shape is None:
         return []
-    name = f" name={quoteattr(collision.name)}" if collision.name else ""
+    name = f" name={quote_attribute(collision.name)}" if collision.name else ""
     return [f"    <collision{name}>", "      " + _origin(collision.origin),
             f"      <geometry>{shape}</geometry>", "    </collision>"]
 
 
 def _link(link: Link, mesh_path: MeshPath) -> list[str]:
-    lines = [f"  <link name={quoteattr(link.name)}>"]
+    lines = [f"  <link name={quote_attribute(link.name)}>"]
     if link.inertial is not None:
         lines += _inertial(link.inertial)
     for collision in link.collisions:
@@ -86,9 +86,9 @@ def _link(link: Link, mesh_path: MeshPath) -> list[str]:
 
 
 def _joint(joint: Joint) -> list[str]:
-    lines = [f"  <joint name={quoteattr(joint.name)} type={quoteattr(joint.type)}>",
-             f"    <parent link={quoteattr(joint.parent)}/>",
-             f"    <child link={quoteattr(joint.child)}/>", "    " + _origin(joint.origin)]
+    lines = [f"  <joint name={quote_attribute(joint.name)} type={quote_attribute(joint.type)}>",
+             f"    <parent link={quote_attribute(joint.parent)}/>",
+             f"    <child link={quote_attribute(joint.child)}/>", "    " + _origin(joint.origin)]
     if joint.axis is not None:
         lines.append(f'    <axis xyz="{_numbers(joint.axis)}"/>')
     if joint.limit is not None:
@@ -106,7 +106,7 @@ def _joint(joint: Joint) -> list[str]:
         mimic = joint.mimic
         multiplier = 1.0 if mimic.multiplier is None else mimic.multiplier
         offset = 0.0 if mimic.offset is None else mimic.offset
-        lines.append(f'    <mimic joint={quoteattr(mimic.joint)} multiplier="{multiplier!r}" '
+        lines.append(f'    <mimic joint={quote_attribute(mimic.joint)} multiplier="{multiplier!r}" '
                      f'offset="{offset!r}"/>')
     return lines + ["  </joint>"]
 
@@ -118,7 +118,7 @@ def pinocchio_urdf(robot: Robot, mesh_path: MeshPath = lambda mesh: None) -> str
         robot: the parsed robot.
         mesh_path: resolves a `<mesh>` to an absolute file (default: meshes are left out).
     """
-    lines = ['<?xml version="1.0"?>', f"<robot name={quoteattr(robot.name or 'robot')}>"]
+    lines = ['<?xml version="1.0"?>', f"<robot name={quote_attribute(robot.name or 'robot')}>"]
     for link in robot.links:
         lines += _link(link, mesh_path)
     for joint in robot.joints:

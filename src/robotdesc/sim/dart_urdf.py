@@ -21,7 +21,6 @@ import logging
 import os
 from dataclasses import dataclass
 from typing import Any, Mapping, Sequence
-from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
@@ -40,6 +39,7 @@ from robotdesc.model.elements import (
 from robotdesc.model.tree import parent_joint_of
 from robotdesc.sim.meshes import MeshAssets, SimMeshError
 from robotdesc.spatial import rpy_matrix
+from robotdesc.xml_text import quote_attribute
 
 log = logging.getLogger(__name__)
 
@@ -83,9 +83,9 @@ def dart_urdf(robot: Robot, meshes: MeshAssets, scratch: str,
     writer = _Writer(meshes, scratch)
     moving_children = {name for name, joint in parent_joint_of(robot).items()
                        if joint.type != "fixed"}
-    lines = [f"<robot name={quoteattr(robot.name or 'robot')}>"]
+    lines = [f"<robot name={quote_attribute(robot.name or 'robot')}>"]
     for link in robot.links:
-        lines.append(f"  <link name={quoteattr(link.name)}>")
+        lines.append(f"  <link name={quote_attribute(link.name)}>")
         lines.extend(_inertial(link, link.name in moving_children))
         if parts is not None and link.name in parts:
             for index, part in enumerate(parts[link.name]):
@@ -121,9 +121,9 @@ def _inertial(link: Link, moving: bool) -> list[str]:
 
 
 def _joint(joint: Joint) -> list[str]:
-    lines = [f"  <joint name={quoteattr(joint.name)} type={quoteattr(joint.type)}>",
-             f"    <parent link={quoteattr(joint.parent)}/>",
-             f"    <child link={quoteattr(joint.child)}/>", f"    {_origin(joint.origin)}"]
+    lines = [f"  <joint name={quote_attribute(joint.name)} type={quote_attribute(joint.type)}>",
+             f"    <parent link={quote_attribute(joint.parent)}/>",
+             f"    <child link={quote_attribute(joint.child)}/>", f"    {_origin(joint.origin)}"]
     if joint.axis is not None:
         lines.append('    <axis xyz="%r %r %r"/>' % tuple(joint.axis))
     limit = joint.limit
@@ -138,7 +138,7 @@ def _joint(joint: Joint) -> list[str]:
         lines.append(f"    <dynamics {text}/>")
     if joint.mimic is not None:
         mimic = joint.mimic
-        lines.append(f"    <mimic joint={quoteattr(mimic.joint)} "
+        lines.append(f"    <mimic joint={quote_attribute(mimic.joint)} "
                      f'multiplier="{mimic.multiplier if mimic.multiplier is not None else 1.0!r}" '
                      f'offset="{mimic.offset if mimic.offset is not None else 0.0!r}"/>')
     lines.append("  </joint>")
@@ -164,7 +164,7 @@ class _Writer:
         if isinstance(geometry, MeshRef):
             path, scale, triangles = self._mesh_file(geometry)
             self.triangles += triangles
-            inner = f"<mesh filename={quoteattr(path)} scale=\"%r %r %r\"/>" % scale
+            inner = f"<mesh filename={quote_attribute(path)} scale=\"%r %r %r\"/>" % scale
         elif isinstance(geometry, Box):
             inner = '<box size="%r %r %r"/>' % tuple(max(s, 1e-6) for s in geometry.size)
         elif isinstance(geometry, Cylinder):
@@ -188,7 +188,7 @@ class _Writer:
         self.geoms += 1
         self.triangles += len(faces)
         return ["    <collision>", f"      {_origin(Pose())}",
-                f"      <geometry><mesh filename={quoteattr(path)}/></geometry>",
+                f"      <geometry><mesh filename={quote_attribute(path)}/></geometry>",
                 "    </collision>"]
 
     def _capsule(self, origin: Pose, capsule: Capsule) -> list[str]:

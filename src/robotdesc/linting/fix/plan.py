@@ -13,11 +13,11 @@ import os
 import re
 from collections.abc import Callable
 from dataclasses import dataclass
-from xml.sax.saxutils import escape
 
 from robotdesc.linting.fix.changes import AttributeChange, ExpandedIndex, NotApplicable
 from robotdesc.linting.fix.source_text import SourceText, StartTag, scan
 from robotdesc.source import Span
+from robotdesc.xml_text import escape_attribute
 
 _PARAMETER = re.compile(r"^\$\{\s*([A-Za-z_]\w*)\s*\}$")
 _EXPRESSION = re.compile(r"\$\{([^}]*)\}")
@@ -155,4 +155,4 @@ def _uses(body: str, name: str) -> int:
 
 
 def _quote(value: str) -> str:
-    return escape(value, {'"': "&quot;"})
+    return escape_attribute(value)
