@@ -16,7 +16,8 @@ import pytest
 from mesh.builders import box_triangles, write_binary_stl
 
 from robotdesc.cli import main
-from robotdesc.collision.manifest import MANIFEST_NAME, sha256_file
+from robotdesc.collision.manifest import MANIFEST_NAME
+from robotdesc.digest import file_digest
 
 
 @pytest.fixture
@@ -96,9 +97,9 @@ def test_manifest_entries_outside_out_are_never_deleted(package, capsys):
     beside.write_text("keep me")
     source = package / "meshes" / "b.stl"
     manifest = json.loads((out / MANIFEST_NAME).read_text())
-    forged = {"../beside.txt": sha256_file(str(beside)), str(source): sha256_file(str(source)),
-              "meshes/../../beside.txt": sha256_file(str(beside)),
-              "meshes/old.stl": sha256_file(str(source))}
+    beside_digest, source_digest = file_digest(str(beside)), file_digest(str(source))
+    forged = {"../beside.txt": beside_digest, str(source): source_digest,
+              "meshes/../../beside.txt": beside_digest, "meshes/old.stl": source_digest}
     (out / "meshes" / "old.stl").symlink_to(source)  # a symlink in --out, to a source
     manifest["files"].update(forged)
     (out / MANIFEST_NAME).write_text(json.dumps(manifest))

@@ -48,7 +48,7 @@ def test_warm_run_does_no_mesh_work(tmp_path, mesh_file, monkeypatch):
         raise AssertionError("the mesh was loaded again")
 
     monkeypatch.setattr(load_module, "load_mesh", fail)
-    monkeypatch.setattr("robotdesc.mesh.cache._hash_file", fail)  # stat index hit: no hashing
+    monkeypatch.setattr("robotdesc.mesh.cache.file_digest", fail)  # stat index hit: no hashing
     assert analyze_mesh_file(mesh_file, cache=cache) == cold
 
 

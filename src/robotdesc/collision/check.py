@@ -12,7 +12,8 @@ import os
 from dataclasses import dataclass
 
 from robotdesc.collision.generate import Plan
-from robotdesc.collision.manifest import read_manifest, sha256_file
+from robotdesc.collision.manifest import read_manifest
+from robotdesc.digest import file_digest
 
 
 @dataclass(frozen=True)
@@ -48,7 +49,7 @@ def check_outputs(plan: Plan, out_dir: str, every_link: bool = True) -> list[Sta
         if link not in planned:
             found.append(Staleness(link, "the link no longer has source geometry"))
     for name, digest in sorted(manifest.files.items()):
-        current = sha256_file(os.path.join(out_dir, name))
+        current = file_digest(os.path.join(out_dir, name), follow_symlinks=False)
         if current is None:
             found.append(Staleness(name, "missing"))
         elif current != digest:

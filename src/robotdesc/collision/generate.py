@@ -21,12 +21,12 @@ from robotdesc.collision.options import CollisionOptions
 from robotdesc.collision.result import CollisionResult, Finding, LinkOutcome, LinkReport
 from robotdesc.collision.sources import (
     LinkSources,
-    file_digest,
     link_sources,
     load_link_soup,
     sources_digest,
 )
 from robotdesc.collision.worker import TaskFailure, default_jobs, run_tasks, start_workers_early
+from robotdesc.digest import file_digest
 from robotdesc.errors import InputError, UnknownLinkError
 from robotdesc.mesh.locate import MeshLocator
 from robotdesc.model.elements import Robot

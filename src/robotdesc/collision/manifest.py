@@ -9,7 +9,6 @@ a device (they never hang a run)."""
 
 from __future__ import annotations
 
-import hashlib
 import json
 import os
 import re
@@ -79,28 +78,3 @@ def own_file(folder: str, name: object) -> str | None:
     except OSError:
         return None
     return path if stat.S_ISREG(info.st_mode) else None
-
-
-def sha256_bytes(data: bytes) -> str:
-    return hashlib.sha256(data).hexdigest()
-
-
-def sha256_file(path: str) -> str | None:
-    """SHA-256 of a regular file (a symlink is not followed); None when it is absent,
-    unreadable or not a regular file."""
-    flags = os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK | os.O_CLOEXEC
-    try:
-        handle = os.open(path, flags)
-    except OSError:
-        return None
-    digest = hashlib.sha256()
-    try:
-        if not stat.S_ISREG(os.fstat(handle).st_mode):
-            return None
-        while chunk := os.read(handle, 1 << 20):
-            digest.update(chunk)
-    except OSError:
-        return None
-    finally:
-        os.close(handle)
-    return digest.hexdigest()

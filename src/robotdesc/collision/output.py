@@ -37,12 +37,11 @@ from robotdesc.collision.manifest import (
     Manifest,
     own_file,
     read_manifest,
-    sha256_bytes,
-    sha256_file,
 )
 from robotdesc.collision.result import CollisionResult, MeshPart, PrimitivePart
 from robotdesc.collision.stl import stl_bytes
 from robotdesc.collision.xacro_patch import XacroPatch, build_patch
+from robotdesc.digest import bytes_digest, file_digest
 from robotdesc.errors import OutputConflict
 from robotdesc.expansion.packages import enclosing_package
 from robotdesc.model.elements import Box, Capsule, Cylinder, MeshRef, Sphere
@@ -80,7 +79,7 @@ def earlier_outputs(out_dir: str, old: Manifest, links: list[str], base: str,
     def current(name: str) -> bytes:
         path = own_file(out_dir, name) or os.path.join(out_dir, name)
         if own_file(out_dir, name) is None or name not in old.files \
-                or sha256_file(path) != old.files[name]:
+                or file_digest(path, follow_symlinks=False) != old.files[name]:
             raise OutputConflict(
                 f"the earlier outputs of {', '.join(links)} (not made in this run) cannot be "
                 f"kept: {name} is missing or was edited; nothing was written. Make those links "
@@ -192,8 +191,8 @@ def write_outputs(result: CollisionResult, urdf_xml: bytes, out_dir: str, *,
         path = os.path.join(out_dir, name)
         if not os.path.exists(path):
             continue
-        current = sha256_file(path)
-        if current != sha256_bytes(data) and old.files.get(name) != current:
+        current = file_digest(path, follow_symlinks=False)
+        if current != bytes_digest(data) and old.files.get(name) != current:
             conflicts.append(name)
     if os.path.exists(os.path.join(out_dir, MANIFEST_NAME)) and not old.files \
             and read_manifest(out_dir) is None:
@@ -208,16 +207,16 @@ def write_outputs(result: CollisionResult, urdf_xml: bytes, out_dir: str, *,
     written = []
     for name, data in sorted(files.items()):
         path = os.path.join(out_dir, name)
-        if sha256_file(path) != sha256_bytes(data):
+        if file_digest(path, follow_symlinks=False) != bytes_digest(data):
             write_output(path, data, inputs, within=out_dir)
             written.append(path)
     for name, digest in old.files.items():  # our own files that are no longer produced
         path = own_file(out_dir, name)
-        if path is not None and name not in files and sha256_file(path) == digest \
+        if path is not None and name not in files and file_digest(path, follow_symlinks=False) == digest \
                 and inputs.match(path) is None:
             os.unlink(path)
     manifest = Manifest(
-        files={name: sha256_bytes(data) for name, data in files.items()},
+        files={name: bytes_digest(data) for name, data in files.items()},
         links={**{name: old.links[name] for name in keep},
                **{o.report.link: {"key": o.key, "status": o.report.status,
                                   "method": o.report.method}
@@ -236,7 +235,7 @@ def _not_own(inputs: RunInputs, out_dir: str, old: Manifest) -> RunInputs:
     own = set()
     for name, digest in old.files.items():
         path = own_file(out_dir, name)
-        if path is not None and sha256_file(path) == digest:
+        if path is not None and file_digest(path, follow_symlinks=False) == digest:
             own.add(os.path.realpath(path))
     return RunInputs(tuple(item for item in inputs.items if item.path not in own))
 

@@ -15,8 +15,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
-import stat
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
@@ -130,23 +128,3 @@ def load_link_soup(sources: LinkSources) -> np.ndarray:
             part = primitive_mesh(geometry, item.origin)
             soups.append(part.vertices[part.faces])
     return np.concatenate(soups)
-
-
-def file_digest(path: str) -> str | None:
-    """SHA-256 of a regular file's bytes (no cache); None when unreadable or not a regular
-    file (opened without blocking: a FIFO never hangs)."""
-    digest = hashlib.sha256()
-    try:
-        handle = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)
-    except OSError:
-        return None
-    try:
-        if not stat.S_ISREG(os.fstat(handle).st_mode):
-            return None
-        while chunk := os.read(handle, 1 << 20):
-            digest.update(chunk)
-    except OSError:
-        return None
-    finally:
-        os.close(handle)
-    return digest.hexdigest()

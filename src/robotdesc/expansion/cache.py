@@ -16,14 +16,13 @@ import dataclasses
 import hashlib
 import json
 import logging
-import os
-import stat
 import sys
 from pathlib import Path
 from typing import Any
 
 from robotdesc._version import code_id, module_stamp
 from robotdesc.cache_dir import read_regular_file, write_entry
+from robotdesc.digest import file_digest
 from robotdesc.expansion.result import Expanded, MacroRecursion, ResolvedPackage, decode_input_facts
 from robotdesc.source import Span
 
@@ -44,26 +43,6 @@ def cache_key(settings: dict[str, object]) -> str:
     material = json.dumps({"format": _FORMAT, "versions": _versions(), **settings},
                           sort_keys=True, default=str)
     return hashlib.sha256(material.encode()).hexdigest()
-
-
-def file_digest(path: str) -> str | None:
-    """SHA-256 of a regular file's bytes; None when it is missing, unreadable or not a
-    regular file (opened without blocking: a FIFO listed by an entry never hangs)."""
-    try:
-        handle = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)
-    except OSError:
-        return None
-    try:
-        if not stat.S_ISREG(os.fstat(handle).st_mode):
-            return None
-        digest = hashlib.sha256()
-        while chunk := os.read(handle, 1 << 20):
-            digest.update(chunk)
-        return digest.hexdigest()
-    except OSError:
-        return None
-    finally:
-        os.close(handle)
 
 
 def _entry_path(cache_dir: Path, key: str) -> Path:

@@ -28,6 +28,7 @@ from pathlib import Path
 from typing import Any
 
 from robotdesc.cache_dir import cache_root, read_regular_file, write_entry
+from robotdesc.digest import file_digest
 from robotdesc.mesh.errors import MeshError, MeshErrorKind
 from robotdesc.mesh.properties import MassProperties
 from robotdesc.mesh.records import MassMethod, MeshHealth, MeshSummary
@@ -85,7 +86,7 @@ class MeshCache:
         if isinstance(known, dict) and known.get("key") == path_key \
                 and known.get("stamp") == stamp and isinstance(stored := known.get("digest"), str):
             return stored
-        digest = _hash_file(path)
+        digest = file_digest(path)
         if digest is not None:
             self._write(index_file, {"key": path_key, "stamp": stamp, "digest": digest})
         return digest
@@ -188,21 +189,3 @@ def _read_json(path: str) -> Any:
     except ValueError as error:
         log.debug("ignoring unreadable cache entry %s: %s", path, error)
         return None
-
-
-def _hash_file(path: str, block: int = 1 << 20) -> str | None:
-    digest = hashlib.sha256()
-    try:  # non-blocking open and a regular-file check: a FIFO put in its place never hangs
-        handle = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)
-    except OSError:
-        return None
-    try:
-        if not stat.S_ISREG(os.fstat(handle).st_mode):
-            return None
-        while chunk := os.read(handle, block):
-            digest.update(chunk)
-    except OSError:
-        return None
-    finally:
-        os.close(handle)
-    return digest.hexdigest()

@@ -1,0 +1,39 @@
+"""SHA-256 digests of files and bytes: the one way the caches and the collision manifest
+recognise content."""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import stat
+
+_BLOCK = 1 << 20  # bytes read at a time
+
+
+def bytes_digest(data: bytes) -> str:
+    """The SHA-256 of `data`, as hex."""
+    return hashlib.sha256(data).hexdigest()
+
+
+def file_digest(path: str, *, follow_symlinks: bool = True) -> str | None:
+    """The SHA-256 of a regular file's bytes, as hex; None when it is missing, unreadable or
+    not a regular file. Opened without blocking, so a FIFO put in a file's place never hangs;
+    with `follow_symlinks=False` a symlink is refused as well (None)."""
+    flags = os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC
+    if not follow_symlinks:
+        flags |= os.O_NOFOLLOW
+    try:
+        handle = os.open(path, flags)
+    except OSError:
+        return None
+    try:
+        if not stat.S_ISREG(os.fstat(handle).st_mode):
+            return None
+        digest = hashlib.sha256()
+        while chunk := os.read(handle, _BLOCK):
+            digest.update(chunk)
+        return digest.hexdigest()
+    except OSError:
+        return None
+    finally:
+        os.close(handle)
