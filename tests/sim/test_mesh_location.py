@@ -13,11 +13,13 @@ from mesh.builders import box_triangles, write_binary_stl
 import robotdesc
 from robotdesc.cli import main
 from robotdesc.mesh.context import MeshContext
+from robotdesc.mesh.locate import MeshLocator
 from robotdesc.mesh.resolve import MeshResolution, ResolveProblemKind
 from robotdesc.mesh.settings import MeshSettings
 from robotdesc.model.elements import MeshRef, Robot
+from robotdesc.sim import run
 from robotdesc.sim.load import load_sim_input
-from robotdesc.sim.meshes import SimMeshError
+from robotdesc.sim.meshes import MeshAssets, SimMeshError
 
 TOP = """<?xml version="1.0"?>
 <robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
@@ -104,3 +106,22 @@ def test_the_sim_command_takes_the_policy_from_the_config(tmp_path: Path) -> Non
     assert main(arguments) == 2  # refused: exit 2, naming the `<mesh>`
     (tmp_path / "demo" / "robotdesc.toml").write_text("[meshes]\nallow_absolute_paths = true\n")
     assert main(arguments) in (0, 1)  # simulated (pass or fail is not the point here)
+
+
+@pytest.mark.parametrize("allowed", [False, True])
+def test_the_generated_variant_keeps_the_mesh_policy(monkeypatch: pytest.MonkeyPatch,
+                                                     allowed: bool) -> None:
+    """`sim --collision generated` makes its collision meshes under the same `[meshes]` policy
+    as the rest of the run."""
+    seen: dict[str, object] = {}
+
+    def fake_parts(robot: Robot, **kwargs: object) -> dict[str, tuple[object, ...]]:
+        seen.update(kwargs)
+        return {}
+
+    monkeypatch.setattr(run, "generated_parts", fake_parts)
+    monkeypatch.setattr(run, "build_scene", lambda *args, **kwargs: "scene")
+    robot = Robot(name="r")
+    meshes = MeshAssets(MeshLocator(robot, lambda name: None, allowed))
+    assert run.scene_for(robot, meshes, run.SimOptions(), "generated") == "scene"
+    assert seen["allow_absolute_paths"] is allowed

@@ -63,7 +63,8 @@ def scene_for(robot: Robot, meshes: MeshAssets, options: SimOptions, collision: 
     if collision == "visual":
         robot = visual_as_collision(robot)
     elif collision == "generated":
-        parts = generated_parts(robot, method=options.generate_method, package_map=package_map)
+        parts = generated_parts(robot, method=options.generate_method, package_map=package_map,
+                                allow_absolute_paths=meshes.locator.allow_absolute)
     return build_scene(robot, meshes, options.scene, collision_parts=parts)
 
 
