@@ -15,9 +15,10 @@ Every class here pickles with its fields (errors travel back from worker process
 from __future__ import annotations
 
 import enum
+from dataclasses import dataclass
 from typing import Any
 
-from robotdesc.source import Span
+from robotdesc.source import Provenance, Span
 
 
 class RobotdescError(Exception):
@@ -256,6 +257,53 @@ class OutputConflict(InputError):
         self.files = files
 
 
+# --- kinematics (Pinocchio) ---------------------------------------------------------------
+
+#: What to tell a user who lacks Pinocchio.
+PINOCCHIO_HINT = "install it with: pip install '.[kinematics]'  (the `pin` package)"
+
+
+class KinematicsUnavailable(InputError):
+    """Pinocchio (`pin`) is not installed, so kinematic checks cannot run (exit code 2).
+
+    Args:
+        what: the command or check that needs Pinocchio (the message starts with it).
+    """
+
+    def __init__(self, what: str) -> None:
+        super().__init__(f"{what} needs Pinocchio, which is not installed; {PINOCCHIO_HINT}")
+        self.what = what
+
+
+@dataclass(frozen=True)
+class BuildProblem:
+    """Why Pinocchio could not build a model.
+
+    Attributes:
+        reason: Pinocchio's (urdfdom's) own words, its source locations removed.
+        element: the element the reason names ("joint:j", "link:l"), "" when none.
+        where: that element's provenance, when known.
+        from_pinocchio: False when robotdesc refused the model before calling Pinocchio
+            (links that do not form one tree, which crash urdfdom on some inputs).
+    """
+
+    reason: str
+    element: str = ""
+    where: Provenance | None = None
+    from_pinocchio: bool = True
+
+
+class KinematicBuildError(InputError):
+    """Pinocchio refused the robot; `problem` says why and where."""
+
+    def __init__(self, problem: BuildProblem) -> None:
+        prefix = "Pinocchio cannot build the model" if problem.from_pinocchio else \
+            "the model cannot be given to Pinocchio"
+        super().__init__(f"{prefix}: {problem.reason}",
+                         problem.where.span if problem.where else None)
+        self.problem = problem
+
+
 # --- physics checks -----------------------------------------------------------------------
 
 
@@ -272,6 +320,10 @@ class SimUnavailable(InputError):
         super().__init__(message)
         self.engine = engine
         self.requirement = requirement
+
+
+class SimMeshError(InputError):
+    """A mesh of the description cannot be given to the simulator (names the `<mesh>` line)."""
 
 
 class SimModelError(InputError):

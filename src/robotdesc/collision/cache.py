@@ -16,6 +16,7 @@ import logging
 import os
 from dataclasses import fields
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -80,7 +81,8 @@ class CollisionCache:
             arrays[f"v{i}"] = part.vertices
             arrays[f"f{i}"] = part.faces
         buffer = io.BytesIO()
-        np.savez(buffer, **arrays)
+        # numpy's stub lets a name match `allow_pickle`, which older numpy does not have
+        np.savez(buffer, **arrays)  # type: ignore[arg-type]
         path = self._path(outcome.key)
         try:
             write_entry(path, buffer.getvalue())
@@ -91,7 +93,8 @@ class CollisionCache:
         return self.root / key[:2] / f"{key}.npz"
 
 
-def _report(data: dict) -> LinkReport:
+def _report(data: dict[str, Any]) -> LinkReport:
+    """A report read back from its `LinkReport.to_dict` JSON."""
     names = {f.name for f in fields(LinkReport)}
     values = {k: v for k, v in data.items() if k in names}
     values["findings"] = tuple(Finding(**f) for f in data.get("findings", ()))

@@ -10,6 +10,10 @@ its hull); Bullet accepts both, but recommends small hulls (about 100 vertices) 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from robotdesc.collision.result import Finding, Part
 
 
 @dataclass(frozen=True)
@@ -41,7 +45,7 @@ ENGINE_LIMITS: dict[str, EngineLimits] = {
 }
 
 
-def limit_findings(parts: tuple, limits: EngineLimits) -> tuple:
+def limit_findings(parts: tuple[Part, ...], limits: EngineLimits) -> tuple[Finding, ...]:
     """Findings (warnings) for every limit a link's geometry exceeds."""
     from robotdesc.collision.result import Finding, MeshPart
 

@@ -146,7 +146,9 @@ def _decimate_to_target(vertices: np.ndarray, faces: np.ndarray,
         budgets.append(min(cap, int(budgets[-1] * _growth(measured.hausdorff_percent,
                                                           options.target_percent))))
     percent = measured.hausdorff_percent
-    kept = len(made.parts[0].faces)
+    decimated = made.parts[0]
+    assert isinstance(decimated, MeshPart)  # `_decimate_once` makes one mesh
+    kept = len(decimated.faces)
     if len(budgets) > 1:
         steps = " -> ".join(f"{b:,}" for b in budgets)
         made = replace(made, detail=f"budget raised {steps} faces for the "

@@ -29,15 +29,15 @@ OWN_NAME = re.compile(r"meshes/[A-Za-z0-9_.-]+\.stl|[A-Za-z0-9_.-]+\.collision\.
 class Manifest:
     """Attributes:
         files: relative path -> SHA-256 of every file robotdesc wrote in the folder.
-        links: link -> {"key": sources+parameters hash, "files": [...], "status": ...}.
+        links: link -> {"key": sources+parameters hash, "status": ..., "method": ...}.
         source: the description the outputs were made from (relative to the folder).
         parameters: the options used.
     """
 
-    files: dict = field(default_factory=dict)
-    links: dict = field(default_factory=dict)
+    files: dict[str, str] = field(default_factory=dict)
+    links: dict[str, dict[str, str]] = field(default_factory=dict)
     source: str = ""
-    parameters: dict = field(default_factory=dict)
+    parameters: dict[str, object] = field(default_factory=dict)
 
     def to_json(self) -> bytes:
         data = {"format": MANIFEST_FORMAT, "tool": "robotdesc collision", "source": self.source,

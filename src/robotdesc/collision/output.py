@@ -28,6 +28,7 @@ from __future__ import annotations
 import logging
 import os
 import re
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 from lxml import etree
@@ -52,9 +53,15 @@ from robotdesc.output import (
     prepare_output_dir,
     write_output,
 )
-from robotdesc.source import Span
+from robotdesc.source import Span, strip_provenance
 
 log = logging.getLogger(__name__)
+
+#: What a new `<collision>` element is made from: a part of this run, or the `MeshRef` of a
+#: kept mesh element read back (only its file name is used).
+ElementPart = MeshPart | PrimitivePart | MeshRef
+#: Per link, its new `<collision>` elements as (file name, part); "" for a primitive.
+References = dict[str, list[tuple[str, ElementPart]]]
 
 
 @dataclass(frozen=True)
@@ -63,7 +70,7 @@ class Kept:
 
     A kept mesh element's part is the `MeshRef` read back (only its file name is used)."""
 
-    references: dict[str, list[tuple[str, object]]]
+    references: References
     files: dict[str, bytes]
 
 
@@ -89,11 +96,11 @@ def earlier_outputs(out_dir: str, old: Manifest, links: list[str], base: str,
 
     urdf_name = f"{base}.collision.urdf"
     earlier = parse_urdf(current(urdf_name), os.path.join(out_dir, urdf_name))
-    references: dict[str, list[tuple[str, object]]] = {}
+    references: References = {}
     files: dict[str, bytes] = {}
     for name in links:
         link = earlier.link(name)
-        elements: list[tuple[str, object]] = []
+        elements: list[tuple[str, ElementPart]] = []
         for collision in link.collisions if link is not None else ():
             geometry = collision.geometry
             if isinstance(geometry, MeshRef):
@@ -118,13 +125,13 @@ def planned_files(result: CollisionResult, urdf_xml: bytes, out_dir: str,
             and files.
     """
     files: dict[str, bytes] = dict(kept.files) if kept else {}
-    found: dict[str, list[tuple[str, object]]] = dict(kept.references) if kept else {}
+    found: References = dict(kept.references) if kept else {}
     for outcome in result.outcomes:
         if not outcome.written:
             continue
         stem = _safe(outcome.report.link)
         meshes = [p for p in outcome.parts if isinstance(p, MeshPart)]
-        elements = []
+        elements: list[tuple[str, ElementPart]] = []
         for index, part in enumerate(outcome.parts):
             if isinstance(part, MeshPart):
                 name = f"meshes/{stem}.stl" if len(meshes) == 1 else f"meshes/{stem}_{index}.stl"
@@ -211,10 +218,11 @@ def write_outputs(result: CollisionResult, urdf_xml: bytes, out_dir: str, *,
             write_output(path, data, inputs, within=out_dir)
             written.append(path)
     for name, digest in old.files.items():  # our own files that are no longer produced
-        path = own_file(out_dir, name)
-        if path is not None and name not in files and file_digest(path, follow_symlinks=False) == digest \
-                and inputs.match(path) is None:
-            os.unlink(path)
+        stale = own_file(out_dir, name)
+        if stale is not None and name not in files \
+                and file_digest(stale, follow_symlinks=False) == digest \
+                and inputs.match(stale) is None:
+            os.unlink(stale)
     manifest = Manifest(
         files={name: bytes_digest(data) for name, data in files.items()},
         links={**{name: old.links[name] for name in keep},
@@ -240,9 +248,7 @@ def _not_own(inputs: RunInputs, out_dir: str, old: Manifest) -> RunInputs:
     return RunInputs(tuple(item for item in inputs.items if item.path not in own))
 
 
-def _new_urdf(urdf_xml: bytes, references: dict, package: str | None) -> bytes:
-    from robotdesc.model.parse import strip_provenance
-
+def _new_urdf(urdf_xml: bytes, references: References, package: str | None) -> bytes:
     parser = etree.XMLParser(resolve_entities=False, no_network=True, remove_blank_text=False)
     root = etree.fromstring(strip_provenance(urdf_xml), parser)
     for link in root.findall("link"):
@@ -258,10 +264,11 @@ def _new_urdf(urdf_xml: bytes, references: dict, package: str | None) -> bytes:
             new = _collision_element(link.get("name", ""), offset, name, part, package)
             new.tail = tail
             link.insert(anchor + offset, new)
-    return etree.tostring(root, xml_declaration=True, encoding="utf-8") + b"\n"
+    text: bytes = etree.tostring(root, xml_declaration=True, encoding="utf-8")
+    return text + b"\n"
 
 
-def _collision_element(link: str, index: int, filename: str, part: object,
+def _collision_element(link: str, index: int, filename: str, part: ElementPart,
                        package: str | None) -> etree._Element:
     element = etree.Element("collision", name=f"{link}_collision_{index}")
     origin = etree.SubElement(element, "origin")
@@ -286,7 +293,7 @@ def _collision_element(link: str, index: int, filename: str, part: object,
     return element
 
 
-def _xacro_patch(result: CollisionResult, references: dict, package: str | None,
+def _xacro_patch(result: CollisionResult, references: References, package: str | None,
                  out_dir: str, patch_name: str) -> XacroPatch:
     """The patch for the xacro sources; relative mesh paths are taken from each patched file."""
     out_dir = os.path.abspath(out_dir)
@@ -304,7 +311,7 @@ def _xacro_patch(result: CollisionResult, references: dict, package: str | None,
                        relative_meshes=package is None)
 
 
-def _xacro_snippet(result: CollisionResult, references: dict, package: str | None,
+def _xacro_snippet(result: CollisionResult, references: References, package: str | None,
                    out_dir: str, patch: XacroPatch, patch_name: str) -> bytes:
     skipped = {s.link: s.reason for s in patch.skipped}
     lines = ['<?xml version="1.0" encoding="utf-8"?>',
@@ -357,5 +364,5 @@ def _num(value: float) -> str:
     return f"{float(value):.9g}"
 
 
-def _vec(values) -> str:
+def _vec(values: Iterable[float]) -> str:
     return " ".join(_num(v) for v in values)

@@ -9,7 +9,9 @@ manifold, else its convex hull (said in the notes).
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -19,6 +21,11 @@ from robotdesc.collision.tessellate import SECTIONS
 from robotdesc.model.elements import Box, Capsule, Cylinder, Pose, Sphere
 from robotdesc.spatial import rotation_rpy
 
+if TYPE_CHECKING:
+    from manifold3d import Manifold
+
+#: A fitted primitive's URDF geometry.
+_Primitive = Box | Cylinder | Sphere | Capsule
 SHRINK = (1.0, 0.9, 0.8)
 #: Rotation taking a primitive's z axis onto the box axis 0, 1, 2.
 _AXIS_ROTATIONS = (
@@ -53,18 +60,18 @@ def fit_primitive(vertices: np.ndarray, faces: np.ndarray,
         ImportError: manifold3d is not installed.
         robotdesc.errors.NoVolumeError: the mesh spans no volume.
     """
-    import manifold3d
+    import manifold3d  # noqa: F401  (ImportError before any work when it is missing)
     import trimesh
 
     hull = convex_hull(vertices)
-    to_box, _ = trimesh.bounds.oriented_bounds(hull.vertices)
+    to_box, _ = trimesh.bounds.oriented_bounds(hull.vertices)  # type: ignore[no-untyped-call]
     box_from = np.linalg.inv(to_box)
     local = hull.vertices @ to_box[:3, :3].T + to_box[:3, 3]
-    solid, notes = _solid(manifold3d, vertices @ to_box[:3, :3].T + to_box[:3, 3], faces,
+    solid, notes = _solid(vertices @ to_box[:3, :3].T + to_box[:3, 3], faces,
                           hull, to_box)
     solid_volume = solid.volume()
-    best: dict[str, tuple[float, object, np.ndarray, np.ndarray]] = {}
-    for kind, geometry, rotation, shape in _candidates(manifold3d, local, kinds):
+    best: dict[str, tuple[float, _Primitive, np.ndarray, Manifold]] = {}
+    for kind, geometry, rotation, shape in _candidates(local, kinds):
         inter = (solid ^ shape).volume()
         iou = inter / (solid_volume + shape.volume() - inter)
         if kind not in best or iou > best[kind][0]:
@@ -72,13 +79,16 @@ def fit_primitive(vertices: np.ndarray, faces: np.ndarray,
     kind = max(best, key=lambda k: best[k][0])
     iou, geometry, rotation, _ = best[kind]
     link_rotation = box_from[:3, :3] @ rotation
-    origin = Pose(tuple(float(v) for v in box_from[:3, 3]), rotation_rpy(link_rotation.tolist()))
+    x, y, z = (float(v) for v in box_from[:3, 3])
+    origin = Pose((x, y, z), rotation_rpy(link_rotation.tolist()))
     tried = tuple((k, round(float(v[0]), 4)) for k, v in best.items())
     return Fitted(PrimitivePart(geometry, origin), float(iou), tried, notes)
 
 
-def _solid(manifold3d, local_vertices: np.ndarray, faces: np.ndarray, hull: MeshPart,
-           to_box: np.ndarray):
+def _solid(local_vertices: np.ndarray, faces: np.ndarray, hull: MeshPart,
+           to_box: np.ndarray) -> tuple[Manifold, tuple[str, ...]]:
+    import manifold3d
+
     solid = manifold3d.Manifold(manifold3d.Mesh(
         vert_properties=np.ascontiguousarray(local_vertices, dtype=np.float32),
         tri_verts=np.ascontiguousarray(faces, dtype=np.uint32)))
@@ -91,13 +101,16 @@ def _solid(manifold3d, local_vertices: np.ndarray, faces: np.ndarray, hull: Mesh
                    "convex hull",)
 
 
-def _candidates(manifold3d, local: np.ndarray, kinds: tuple[str, ...]):
+def _candidates(local: np.ndarray, kinds: tuple[str, ...]
+                ) -> Iterator[tuple[str, _Primitive, np.ndarray, Manifold]]:
     """(kind, URDF geometry, rotation box<-primitive, manifold solid) per candidate."""
-    Manifold = manifold3d.Manifold
+    from manifold3d import Manifold
+
     half = np.abs(local).max(axis=0)
     for scale in SHRINK:
         if "box" in kinds:
-            size = tuple(float(2 * h * scale) for h in half)
+            width, depth, height = (float(2 * h * scale) for h in half)
+            size = (width, depth, height)
             yield "box", Box(size), np.eye(3), Manifold.cube(size, True)
         if "sphere" in kinds:
             radius = float(np.linalg.norm(local, axis=1).max() * scale)

@@ -19,7 +19,17 @@ import traceback
 from contextlib import contextmanager
 from dataclasses import dataclass
 from multiprocessing.connection import wait
-from typing import Any, Callable, Iterator, Sequence
+from typing import TYPE_CHECKING, Any, Callable, Iterator, Sequence
+
+if TYPE_CHECKING:
+    from multiprocessing.connection import Connection
+    from multiprocessing.context import ForkServerContext, SpawnContext
+    from multiprocessing.process import BaseProcess
+
+    #: What a task's process sends back: ("ok", result, "") or ("exception", message,
+    #: traceback).
+    _Message = tuple[str, Any, str]
+    _Pipe = Connection[_Message, _Message]
 
 log = logging.getLogger(__name__)
 
@@ -41,7 +51,7 @@ class TaskFailure:
     message: str
 
 
-def _context() -> multiprocessing.context.BaseContext:
+def _context() -> ForkServerContext | SpawnContext:
     if "forkserver" in multiprocessing.get_all_start_methods():
         context = multiprocessing.get_context("forkserver")
         context.set_forkserver_preload(PRELOAD)
@@ -72,17 +82,18 @@ def _main_module_hidden() -> Iterator[None]:
     saved = {name: getattr(main, name) for name in ("__file__", "__spec__")
              if main is not None and hasattr(main, name)}
     try:
-        if "__file__" in saved:
-            del main.__file__
-        if "__spec__" in saved:
-            main.__spec__ = None
+        if main is not None:
+            if "__file__" in saved:
+                del main.__file__
+            if "__spec__" in saved:
+                main.__spec__ = None
         yield
     finally:
         for name, value in saved.items():
             setattr(main, name, value)
 
 
-def _child(function: Callable[[Any], Any], argument: Any, connection: Any) -> None:
+def _child(function: Callable[[Any], Any], argument: Any, connection: _Pipe) -> None:
     try:
         result = function(argument)
     except BaseException as error:  # reported to the parent, which decides; not swallowed
@@ -111,15 +122,14 @@ def run_tasks(function: Callable[[Any], Any], arguments: Sequence[Any], *, jobs:
     context = _context()
     results: list[Any] = [None] * len(arguments)
     pending = list(range(len(arguments)))[::-1]
-    running: dict[Any, tuple[int, Any, Any, float]] = {}
+    running: dict[_Pipe, tuple[int, BaseProcess, _Pipe, float]] = {}
     try:
         while pending or running:
             while pending and len(running) < max(1, jobs):
                 index = pending.pop()
                 reader, writer = context.Pipe(duplex=False)
-                process = context.Process(target=_child,
-                                          args=(function, arguments[index], writer),
-                                          daemon=True)
+                process: BaseProcess = context.Process(
+                    target=_child, args=(function, arguments[index], writer), daemon=True)
                 with _main_module_hidden():
                     process.start()
                 writer.close()
@@ -144,7 +154,7 @@ def run_tasks(function: Callable[[Any], Any], arguments: Sequence[Any], *, jobs:
     return results
 
 
-def _collect(reader: Any, process: Any, ready: list, start: float,
+def _collect(reader: _Pipe, process: BaseProcess, ready: Sequence[object], start: float,
              timeout_s: float) -> Any | None:
     """The task's outcome when it has ended (or timed out), else None."""
     if reader in ready or process.sentinel in ready:
@@ -179,7 +189,7 @@ def _death(exitcode: int | None) -> str:
     return f"the worker process exited with code {exitcode} without a result"
 
 
-def _stop(process: Any) -> None:
+def _stop(process: BaseProcess) -> None:
     if process.is_alive():
         process.kill()
     process.join(5)

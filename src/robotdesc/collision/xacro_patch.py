@@ -31,6 +31,7 @@ from robotdesc.collision.xml_extent import ElementExtent, element_extents
 from robotdesc.errors import XmlSyntaxError
 from robotdesc.expansion.packages import enclosing_package
 from robotdesc.model.elements import Link, Robot
+from robotdesc.source import Provenance
 
 #: The reason given for a link whose `<collision>` already comes from this run's snippet.
 UP_TO_DATE = "up to date"
@@ -147,15 +148,16 @@ class _Planner:
         self.robot = robot
         self.render = render
         self.out_dir = out_dir
-        self.counts = Counter(_key(c) for link in robot.links for c in link.collisions
+        self.counts = Counter(_key(c.where) for link in robot.links for c in link.collisions
                               if c.where)
         self.owners: dict[str, dict[tuple[str, int], set[str]]] = {"collision": {}, "link": {}}
         for link in robot.links:
             for collision in link.collisions:
                 if collision.where:
-                    self.owners["collision"].setdefault(_key(collision), set()).add(link.name)
+                    self.owners["collision"].setdefault(_key(collision.where),
+                                                        set()).add(link.name)
             if link.where:
-                self.owners["link"].setdefault(_key(link), set()).add(link.name)
+                self.owners["link"].setdefault(_key(link.where), set()).add(link.name)
         self.sources: dict[str, _Source | str] = {}
         self.generated: dict[str, frozenset[str]] = {}  # folder -> files its manifest lists
 
@@ -170,11 +172,12 @@ class _Planner:
             raise _Unpatchable("not in the description")
         if not link.collisions:
             return [self.insertion(link)]
-        located, seen = [], Counter()
+        located: list[tuple[_Source, ElementExtent]] = []
+        seen: Counter[tuple[str, int]] = Counter()
         for collision in link.collisions:
             if collision.where is None or not collision.where.span.line:
                 raise _Unpatchable("a <collision> has no source position")
-            key = _key(collision)
+            key = _key(collision.where)
             self.check_owner(key, name, "collision")
             self.check_not_generated(key)
             source = self.source(key[0])
@@ -200,7 +203,7 @@ class _Planner:
         """Insert the new elements before the `</link>` of a link that has no `<collision>`."""
         if link.where is None or not link.where.span.line:
             raise _Unpatchable("its <link> has no source position")
-        key = _key(link)
+        key = _key(link.where)
         self.check_owner(key, link.name, "link")
         source = self.source(key[0])
         found = [i for i, e in enumerate(source.extents) if e.name == "link" and e.line == key[1]]
@@ -421,5 +424,6 @@ def _short(path: str, start: str) -> str:
     return os.path.relpath(path, start).replace(os.sep, "/")
 
 
-def _key(element) -> tuple[str, int]:
-    return (element.where.span.path, element.where.span.line)
+def _key(where: Provenance) -> tuple[str, int]:
+    """An element's (file, line), as the source files are searched by."""
+    return (where.span.path, where.span.line)

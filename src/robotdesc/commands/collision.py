@@ -30,7 +30,8 @@ from robotdesc.progress import progress_for
 from robotdesc.report.table import render_table
 
 
-def register(subparsers, *, common, expansion) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser], *,
+             common: argparse.ArgumentParser, expansion: argparse.ArgumentParser) -> None:
     parser = subparsers.add_parser(
         "collision", parents=[common, expansion], help="make collision meshes, measured",
         description="Make collision geometry per link (decimate, hull, coacd, primitive, "

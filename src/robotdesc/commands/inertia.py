@@ -10,16 +10,23 @@ import argparse
 import dataclasses
 import json
 import sys
-from typing import Any
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 from robotdesc.commands.inputs import single_input
 from robotdesc.expansion import expand_file
 from robotdesc.linting.inputs import description_inputs, run_inputs
 from robotdesc.output import check_output, write_output
 
+if TYPE_CHECKING:
+    from robotdesc.inertia.mesh_access import MeshAccess
+    from robotdesc.inertia.suggest import Suggestion
+    from robotdesc.inertia.table import InertiaRow
+    from robotdesc.model.elements import Robot
 
-def register(subparsers: Any, *, common: argparse.ArgumentParser,
-             expansion: argparse.ArgumentParser) -> None:
+
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser], *,
+             common: argparse.ArgumentParser, expansion: argparse.ArgumentParser) -> None:
     """Add the `inertia` subcommand."""
     parser = subparsers.add_parser(
         "inertia", parents=[common, expansion], help="compare inertials with the geometry",
@@ -87,7 +94,8 @@ def run_inertia(ns: argparse.Namespace) -> int:
     return 0
 
 
-def _suggestions(robot, meshes, rows, everything: bool) -> list:
+def _suggestions(robot: Robot, meshes: MeshAccess, rows: Sequence[InertiaRow],
+                 everything: bool) -> list[Suggestion]:
     """Every link whose tensor is wrong (moments or axes), mm meshes scaled: see
     `robotdesc.inertia.suggest.select_suggestions`."""
     from robotdesc.inertia.suggest import select_suggestions
@@ -95,7 +103,7 @@ def _suggestions(robot, meshes, rows, everything: bool) -> list:
     return select_suggestions(robot, meshes, rows, everything=everything)
 
 
-def _render_suggestions(suggestions) -> str:
+def _render_suggestions(suggestions: Sequence[Suggestion]) -> str:
     out = []
     for item in suggestions:
         where = (f"replaces the <inertial> at {item.replaces}" if item.replaces
@@ -108,7 +116,7 @@ def _render_suggestions(suggestions) -> str:
     return "\n".join(out) + ("\n" if out else "")
 
 
-def _suggestion_json(item) -> dict:
+def _suggestion_json(item: Suggestion) -> dict[str, object]:
     return {"link": item.link, "block": item.block,
             "replaces": str(item.replaces) if item.replaces else None,
             "link_at": str(item.link_span) if item.link_span else None,

@@ -9,7 +9,8 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-from typing import Any
+from collections.abc import Iterable
+from typing import TYPE_CHECKING
 
 from robotdesc.commands.inputs import single_input
 from robotdesc.errors import UsageError
@@ -19,9 +20,15 @@ from robotdesc.linting.inputs import run_inputs
 from robotdesc.mesh.locate import MeshLocator
 from robotdesc.progress import progress_for
 
+if TYPE_CHECKING:
+    from robotdesc.kinematics.info import RobotInfo
+    from robotdesc.kinematics.urdf_text import MeshPath
+    from robotdesc.model.elements import Robot
+    from robotdesc.output import RunInputs
 
-def register(subparsers: Any, *, common: argparse.ArgumentParser,
-             expansion: argparse.ArgumentParser) -> None:
+
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser], *,
+             common: argparse.ArgumentParser, expansion: argparse.ArgumentParser) -> None:
     """Add the `info` subcommand."""
     parser = subparsers.add_parser(
         "info", parents=[common, expansion], help="kinematic and mass summary (Pinocchio)",
@@ -38,7 +45,7 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
     parser.set_defaults(handler=run_info)
 
 
-def load_robot(ns: argparse.Namespace, verb: str) -> tuple[Any, Any, str, Any]:
+def load_robot(ns: argparse.Namespace, verb: str) -> tuple[Robot, MeshPath, str, RunInputs]:
     """Expand and parse the one input file; returns (robot, mesh resolver, source path,
     the files the run read as `robotdesc.output.RunInputs`)."""
     from robotdesc.model.parse import parse_urdf
@@ -88,9 +95,9 @@ def run_info(ns: argparse.Namespace) -> int:
     return 0
 
 
-def render_info(info: Any) -> str:
+def render_info(info: RobotInfo) -> str:
     """The info as an aligned two-column table."""
-    def vec(values) -> str:
+    def vec(values: Iterable[float]) -> str:
         return "(" + ", ".join(f"{v:.4f}" for v in values) + ") m"
 
     rows = [("robot", info.name), ("links", str(info.links)),

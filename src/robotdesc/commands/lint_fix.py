@@ -7,16 +7,20 @@ import argparse
 import logging
 import os
 import sys
-from typing import Any, Mapping, Sequence
+from typing import Mapping, Sequence
 
+from robotdesc.diagnostics import Diagnostic
+from robotdesc.expansion import ExpandOptions
 from robotdesc.linting.fix.engine import NOT_APPLICABLE, UNSAFE
 from robotdesc.linting.fix.run import fix_targets
+from robotdesc.linting.targets import LintTarget
 
 log = logging.getLogger(__name__)
 
 
-def run_fixes(ns: argparse.Namespace, targets: Sequence[Any], args: Mapping[str, str],
-              options: Any, select: Sequence[str] | None, ignore: Sequence[str]) -> int:
+def run_fixes(ns: argparse.Namespace, targets: Sequence[LintTarget], args: Mapping[str, str],
+              options: ExpandOptions, select: Sequence[str] | None,
+              ignore: Sequence[str]) -> int:
     """Fix (or diff) the targets' findings; returns --diff's exit code (1: a diff)."""
     run = fix_targets(targets, args=args, expand_options=options, select=select,
                       ignore=ignore, unsafe=ns.unsafe_fixes, write=not ns.diff)
@@ -39,7 +43,7 @@ def run_fixes(ns: argparse.Namespace, targets: Sequence[Any], args: Mapping[str,
     return 0
 
 
-def _where(diagnostic: Any) -> str:
+def _where(diagnostic: Diagnostic) -> str:
     span = diagnostic.where.span if diagnostic.where else None
     if span is None:
         return diagnostic.target

@@ -13,17 +13,27 @@ import argparse
 import dataclasses
 import json
 import sys
-from typing import Any, TextIO
+from typing import TYPE_CHECKING, TextIO
 
-from robotdesc.commands.inputs import single_input
+from robotdesc.commands.inputs import SingleInput, single_input
 from robotdesc.errors import InputError, UsageError
 from robotdesc.progress import progress_for
 from robotdesc.sim.backend import import_mujoco
 from robotdesc.sim.scene import SceneOptions
 
+if TYPE_CHECKING:
+    from robotdesc.sim.compare import Comparison
+    from robotdesc.sim.drive import DriveReport, Progress
+    from robotdesc.sim.engine import Engine
+    from robotdesc.sim.hold import HoldOptions
+    from robotdesc.sim.load import SimInput
+    from robotdesc.sim.rtf import RtfComparison
+    from robotdesc.sim.run import SimOptions
+    from robotdesc.sim.settle import SettleReport
 
-def register(subparsers: Any, *, common: argparse.ArgumentParser,
-             expansion: argparse.ArgumentParser) -> None:
+
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser], *,
+             common: argparse.ArgumentParser, expansion: argparse.ArgumentParser) -> None:
     """Add the `sim` subcommand."""
     parser = subparsers.add_parser(
         "sim", parents=[common, expansion], help="physics settle test and real-time factor",
@@ -124,7 +134,7 @@ def run_sim(ns: argparse.Namespace) -> int:
         return 0 if report.passed else 1
 
 
-def write_report(out: TextIO, report: Any, options: Any) -> None:
+def write_report(out: TextIO, report: SettleReport, options: SimOptions) -> None:
     """The settle test as text: one line per check, then the settle time."""
     how = "joints held at neutral" if options.settle.hold.mode == "position" \
         else "joints passive, damped"
@@ -142,7 +152,7 @@ def write_report(out: TextIO, report: Any, options: Any) -> None:
               + (f" (link '{report.culprit}')" if report.culprit else "") + "\n")
 
 
-def write_rtf(out: TextIO, comparison: Any) -> None:
+def write_rtf(out: TextIO, comparison: RtfComparison) -> None:
     """The real-time factors and their ratio."""
     out.write("real-time factor (simulated s per wall s):\n")
     for measurement in (comparison.baseline, comparison.candidate):
@@ -150,12 +160,12 @@ def write_rtf(out: TextIO, comparison: Any) -> None:
             out.write(f"  collision {measurement.label:<10} {measurement.rtf:10.2f}   "
                       f"({measurement.geoms} geoms, {measurement.mesh_vertices} mesh "
                       "vertices)\n")
-    if comparison.ratio is not None:
+    if comparison.ratio is not None and comparison.candidate is not None:
         out.write(f"  ratio {comparison.candidate.label} / {comparison.baseline.label}: "
                   f"{comparison.ratio:.2f}\n")
 
 
-def run_engine_checks(ns: argparse.Namespace, single: Any) -> int:
+def run_engine_checks(ns: argparse.Namespace, single: SingleInput) -> int:
     """--engine, --compare, --drive and JSON output: exit 0 pass, 1 fail, 2 input error."""
     from robotdesc.sim.compare import compare_variants, parse_variants
     from robotdesc.sim.engine import engine as engine_named
@@ -180,7 +190,7 @@ def run_engine_checks(ns: argparse.Namespace, single: Any) -> int:
         bar.update(simulated, total, f"{label}, RTF {simulated / wall if wall > 0 else 0:.3g}")
 
     with progress_for(ns, f"sim {engine.name}", unit="s simulated") as bar:
-        document: dict[str, Any] = {"robot": loaded.robot.name, "engine": engine.name}
+        document: dict[str, object] = {"robot": loaded.robot.name, "engine": engine.name}
         passed = True
         text = ns.format == "text"
         if variants is None and not ns.drive:  # no settle test on DART yet: as-is vs generated
@@ -203,8 +213,8 @@ def run_engine_checks(ns: argparse.Namespace, single: Any) -> int:
         return 0 if passed else 1
 
 
-def _drive(ns: argparse.Namespace, source: str, loaded: Any, engine: Any, scene_options: Any,
-           hold: Any, progress: Any) -> Any:
+def _drive(ns: argparse.Namespace, source: str, loaded: SimInput, engine: Engine,
+           scene_options: SceneOptions, hold: HoldOptions, progress: Progress) -> DriveReport:
     """The drive test with the configured or given drive joints."""
     from robotdesc.sim.drive import (
         DriveGroup,
@@ -216,6 +226,7 @@ def _drive(ns: argparse.Namespace, source: str, loaded: Any, engine: Any, scene_
 
     if bool(ns.left_wheels) != bool(ns.right_wheels):
         raise UsageError("--left-wheels and --right-wheels go together")
+    groups: tuple[DriveGroup, ...]
     if ns.left_wheels:
         groups = (DriveGroup("options", _names(ns.left_wheels), _names(ns.right_wheels),
                              ns.wheel_separation, ns.wheel_radius),)
@@ -237,7 +248,7 @@ def _names(text: str) -> tuple[str, ...]:
     return tuple(part.strip() for part in text.split(",") if part.strip())
 
 
-def write_comparison(out: TextIO, robot: str, comparison: Any) -> None:
+def write_comparison(out: TextIO, robot: str, comparison: Comparison) -> None:
     """The papers' table: one line per collision variant, then the ratios."""
     from robotdesc.sim.compare import PAPER_SIMPLE_RTF, PAPER_VISUAL_RTF
 
@@ -257,7 +268,7 @@ def write_comparison(out: TextIO, robot: str, comparison: Any) -> None:
               f"{PAPER_SIMPLE_RTF:g}: ratio {PAPER_SIMPLE_RTF / PAPER_VISUAL_RTF:.0f}\n")
 
 
-def write_drive(out: TextIO, report: Any) -> None:
+def write_drive(out: TextIO, report: DriveReport) -> None:
     """The drive test: achieved against commanded velocity per command."""
     groups = ", ".join(f"{g.name} ({len(g.left)}+{len(g.right)} wheels, r {g.radius:g} m, "
                        f"separation {g.separation:g} m"

@@ -3,6 +3,9 @@
 Pinocchio's URDF reader (urdfdom) prints its reason to the C stderr stream and raises a
 generic error; the reason is captured and mapped to the element it names (joint or link
 in brackets), so a refused model becomes a finding at that element's source line.
+
+`KinematicBuildError` and its `BuildProblem` live in `robotdesc.errors` with every other
+error; they are re-exported here, their old home.
 """
 
 from __future__ import annotations
@@ -15,47 +18,19 @@ import threading
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from robotdesc.errors import InputError
+from robotdesc.errors import BuildProblem, KinematicBuildError
 from robotdesc.kinematics.optional import import_pinocchio
 from robotdesc.kinematics.urdf_text import MeshPath, pinocchio_urdf
 from robotdesc.model.elements import Robot
 from robotdesc.model.tree import tree_problem
-from robotdesc.source import Provenance
 
 if TYPE_CHECKING:
     from typing_extensions import Self  # typing.Self from Python 3.11
 
+__all__ = ["BuildProblem", "KinematicBuildError", "KinematicModel", "build_model", "explain"]
+
 _NAMES = re.compile(r"\[([^\]]*)\]")
 _CAPTURE_LOCK = threading.Lock()
-
-
-@dataclass(frozen=True)
-class BuildProblem:
-    """Why Pinocchio could not build a model.
-
-    Attributes:
-        reason: Pinocchio's (urdfdom's) own words, its source locations removed.
-        element: the element the reason names ("joint:j", "link:l"), "" when none.
-        where: that element's provenance, when known.
-        from_pinocchio: False when robotdesc refused the model before calling Pinocchio
-            (links that do not form one tree, which crash urdfdom on some inputs).
-    """
-
-    reason: str
-    element: str = ""
-    where: Provenance | None = None
-    from_pinocchio: bool = True
-
-
-class KinematicBuildError(InputError):
-    """Pinocchio refused the robot; `problem` says why and where."""
-
-    def __init__(self, problem: BuildProblem) -> None:
-        prefix = "Pinocchio cannot build the model" if problem.from_pinocchio else \
-            "the model cannot be given to Pinocchio"
-        super().__init__(f"{prefix}: {problem.reason}",
-                         problem.where.span if problem.where else None)
-        self.problem = problem
 
 
 @dataclass(frozen=True, eq=False)

@@ -73,7 +73,7 @@ def follow_mimics(robot: Robot, positions: Mapping[str, float]) -> dict[str, flo
         if name in result:
             return result[name]
         joint = mimicking.get(name)
-        if joint is None or name in visiting:
+        if joint is None or joint.mimic is None or name in visiting:
             return 0.0
         result[name] = mimic_value(joint, value(joint.mimic.joint, visiting | {name}))
         return result[name]

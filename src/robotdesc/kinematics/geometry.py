@@ -49,6 +49,7 @@ class CollisionShape:
     def local_points(self) -> np.ndarray:
         """Points whose convex hull bounds the shape, in the geometry frame (k, 3), m."""
         if self.kind == "mesh":
+            assert self.triangles is not None  # a mesh shape always has its triangles
             return np.unique(self.triangles.reshape(-1, 3), axis=0)
         if self.kind == "box":
             half = np.asarray(self.size) / 2.0
@@ -64,7 +65,8 @@ class CollisionShape:
     def link_points(self) -> np.ndarray:
         """`local_points` in the link frame (k, 3), m."""
         points = self.local_points()
-        return points @ self.placement[:3, :3].T + self.placement[:3, 3]
+        placed: np.ndarray = points @ self.placement[:3, :3].T + self.placement[:3, 3]
+        return placed
 
 
 @dataclass(frozen=True)
@@ -141,6 +143,7 @@ def to_coal(shape: CollisionShape, convex: bool = False) -> Any:
         return coal.Cylinder(shape.size[0], shape.size[1])
     if shape.kind == "capsule":
         return coal.Capsule(shape.size[0], shape.size[1])
+    assert shape.triangles is not None  # a mesh shape always has its triangles
     vertices, faces = np.unique(shape.triangles.reshape(-1, 3), axis=0, return_inverse=True)
     faces = faces.reshape(-1, 3)
     bvh = coal.BVHModelOBBRSS()

@@ -58,7 +58,7 @@ class RobotInfo:
     configuration: tuple[tuple[str, float], ...] = ()
     bounds: tuple[Vec3, Vec3] | None = None
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, object]:
         """A JSON-ready dict (lists for tuples)."""
         return {"robot": self.name, "links": self.links,
                 "joints_by_type": dict(self.joints_by_type), "dof": self.dof,
@@ -118,7 +118,8 @@ def _com(kinematics: KinematicModel, positions: Mapping[str, float]) -> Vec3:
         total += inertia.mass
         moment += inertia.mass * np.asarray(data.oMi[index].act(inertia.lever))
     com = moment / total if total > 0 else np.zeros(3)
-    return tuple(float(c) for c in com)
+    x, y, z = (float(c) for c in com)
+    return (x, y, z)
 
 
 def _bounds(kinematics: KinematicModel, robot: Robot, mesh_path: MeshPath,
@@ -137,4 +138,6 @@ def _bounds(kinematics: KinematicModel, robot: Robot, mesh_path: MeshPath,
         local = shape.link_points()
         points.append(local @ np.asarray(frame.rotation).T + np.asarray(frame.translation))
     stacked = np.vstack(points)
-    return tuple(map(float, stacked.min(axis=0))), tuple(map(float, stacked.max(axis=0)))
+    low_x, low_y, low_z = map(float, stacked.min(axis=0))
+    high_x, high_y, high_z = map(float, stacked.max(axis=0))
+    return (low_x, low_y, low_z), (high_x, high_y, high_z)

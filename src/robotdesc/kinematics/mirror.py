@@ -33,9 +33,9 @@ def mirrored_name(name: str) -> str | None:
 def mirror_pairs(names: Iterable[str]) -> list[tuple[str, str]]:
     """Pairs (left-ish, right-ish) of names that both exist, each pair once, sorted."""
     known = set(names)
-    pairs = set()
+    pairs: set[tuple[str, str]] = set()
     for name in known:
         other = mirrored_name(name)
         if other is not None and other in known and other != name:
-            pairs.add(tuple(sorted((name, other))))
+            pairs.add((min(name, other), max(name, other)))
     return sorted(pairs)

@@ -1,4 +1,7 @@
-"""Pinocchio is an optional dependency: find it, or say how to install it."""
+"""Pinocchio is an optional dependency: find it, or say how to install it.
+
+`KinematicsUnavailable` and `PINOCCHIO_HINT` live in `robotdesc.errors` with every other
+error; they are re-exported here, their old home."""
 
 from __future__ import annotations
 
@@ -6,19 +9,12 @@ import importlib.util
 import logging
 from types import ModuleType
 
-from robotdesc.errors import InputError
+from robotdesc.errors import PINOCCHIO_HINT, KinematicsUnavailable
+
+__all__ = ["PINOCCHIO_HINT", "KinematicsUnavailable", "import_pinocchio", "pinocchio_available",
+           "pinocchio_or_note"]
 
 log = logging.getLogger(__name__)
-
-#: What to tell a user who lacks Pinocchio.
-PINOCCHIO_HINT = "install it with: pip install '.[kinematics]'  (the `pin` package)"
-
-
-class KinematicsUnavailable(InputError):
-    """Pinocchio (`pin`) is not installed, so kinematic checks cannot run (exit code 2)."""
-
-    def __init__(self, what: str) -> None:
-        super().__init__(f"{what} needs Pinocchio, which is not installed; {PINOCCHIO_HINT}")
 
 
 def pinocchio_available() -> bool:

@@ -74,4 +74,5 @@ class CollisionScene:
 
 def all_link_pairs(links: list[str]) -> list[tuple[str, str]]:
     """Every unordered pair of distinct link names, sorted."""
-    return [tuple(sorted(pair)) for pair in combinations(sorted(set(links)), 2)]
+    return [(min(first, second), max(first, second))
+            for first, second in combinations(sorted(set(links)), 2)]

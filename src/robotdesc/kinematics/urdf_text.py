@@ -8,7 +8,7 @@ so no ROS lookup happens; a mesh that does not resolve is left out (other rules 
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 
 from robotdesc.model.elements import (
     Box,
@@ -30,7 +30,7 @@ from robotdesc.xml_text import quote_attribute
 MeshPath = Callable[[MeshRef], "str | None"]
 
 
-def _numbers(values) -> str:
+def _numbers(values: Iterable[float]) -> str:
     return " ".join(repr(float(v)) for v in values)
 
 

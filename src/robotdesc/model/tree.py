@@ -28,6 +28,7 @@ if TYPE_CHECKING:  # elements imports this module at run time: types only here
     import numpy as np
 
     from robotdesc.model.elements import Joint, Link, Robot
+    from robotdesc.source import Provenance
 
 log = logging.getLogger(__name__)
 
@@ -293,7 +294,7 @@ def _first_joint_per_cycle(edges: list[Joint], components: dict[str, int]) -> li
     return firsts
 
 
-def tree_problem(robot: Robot) -> tuple[str, str, object] | None:
+def tree_problem(robot: Robot) -> tuple[str, str, Provenance | None] | None:
     """Why the links and joints do not form one tree, or None when they do.
 
     Checked before handing a model to Pinocchio: urdfdom crashes the process on some cyclic

@@ -28,7 +28,8 @@ def import_mujoco() -> ModuleType:
     if not _QUIETED:  # MuJoCo's warnings go to logging, not to stderr and MUJOCO_LOG.TXT
         mujoco.set_mju_user_warning(_log_warning)
         _QUIETED = True
-    return mujoco
+    module: ModuleType = mujoco
+    return module
 
 
 _QUIETED = False
@@ -56,4 +57,5 @@ def import_dartpy() -> ModuleType:
         import dartpy
     except ImportError:
         raise SimUnavailable("dart", DART_REQUIREMENT, DART_INSTALL_HINT) from None
-    return dartpy
+    module: ModuleType = dartpy
+    return module

@@ -164,7 +164,9 @@ class DartScene(EngineScene):
         body = self.skeleton.getBodyNode(link)
         if body is None:
             raise KeyError(f"no link '{link}' in the DART scene")
-        return np.asarray(body.getWorldTransform().translation(), dtype=float).copy()
+        position: np.ndarray = np.asarray(body.getWorldTransform().translation(),
+                                          dtype=float).copy()
+        return position
 
     def finite(self) -> bool:
         return bool(np.all(np.isfinite(self.skeleton.getPositions()))

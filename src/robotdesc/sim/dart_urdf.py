@@ -24,7 +24,7 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
-from robotdesc.errors import SimModelError
+from robotdesc.errors import SimMeshError, SimModelError
 from robotdesc.model.elements import (
     Box,
     Capsule,
@@ -37,7 +37,7 @@ from robotdesc.model.elements import (
     Sphere,
 )
 from robotdesc.model.tree import parent_joint_of
-from robotdesc.sim.meshes import MeshAssets, SimMeshError
+from robotdesc.sim.meshes import MeshAsset, MeshAssets
 from robotdesc.spatial import rpy_matrix
 from robotdesc.xml_text import quote_attribute
 
@@ -195,14 +195,14 @@ class _Writer:
         axis = rpy_matrix(origin.rpy)[:, 2] * capsule.length / 2
         lines = self.shape(origin, Cylinder(capsule.radius, capsule.length))
         for sign in (1.0, -1.0):
-            centre = tuple(float(v) for v in np.asarray(origin.xyz) + sign * axis)
-            lines += self.shape(Pose(centre), Sphere(capsule.radius))
+            x, y, z = (float(v) for v in np.asarray(origin.xyz) + sign * axis)
+            lines += self.shape(Pose((x, y, z)), Sphere(capsule.radius))
         return lines
 
     def _mesh_file(self, ref: MeshRef) -> tuple[str, tuple[float, float, float], int]:
         """(file, scale, triangles) of a mesh reference; converts when DART cannot read it."""
         asset = self.meshes.asset(ref)
-        scale = tuple(float(s) for s in ref.scale)
+        scale = (float(ref.scale[0]), float(ref.scale[1]), float(ref.scale[2]))
         key = (asset.source, scale)
         extension = os.path.splitext(asset.source)[1].lower().lstrip(".")
         if key in self._written:
@@ -221,7 +221,7 @@ class _Writer:
         return path, (1.0, 1.0, 1.0), len(soup)
 
 
-def _count_triangles(asset: Any) -> int:
+def _count_triangles(asset: MeshAsset) -> int:
     """Triangles of a mesh file (binary STL: from its header; else loaded by robotdesc)."""
     if asset.faces is not None:
         return int(len(asset.faces))
@@ -239,7 +239,7 @@ def _count_triangles(asset: Any) -> int:
     return int(len(load_mesh(path, (1.0, 1.0, 1.0)).triangles))
 
 
-def _triangle_soup(asset: Any, ref: MeshRef) -> np.ndarray:
+def _triangle_soup(asset: MeshAsset, ref: MeshRef) -> np.ndarray:
     """(n, 3, 3) triangles of a mesh in metres, scaled, with mirrored winding repaired."""
     from robotdesc.mesh.load import load_mesh
     from robotdesc.mesh.validate import MeshError

@@ -27,7 +27,7 @@ from typing import Any, Callable, Iterable, Mapping, Sequence
 import numpy as np
 
 from robotdesc.errors import DriveConfigError, SimOptionError
-from robotdesc.model.elements import Cylinder, Robot, Sphere
+from robotdesc.model.elements import Cylinder, Joint, Robot, Sphere
 from robotdesc.model.tree import poses_at
 from robotdesc.sim.engine import EngineScene
 from robotdesc.source import Span
@@ -278,7 +278,7 @@ def wheel_signs(robot: Robot, names: Iterable[str]) -> dict[str, float]:
     poses = poses_at(robot)
     signs = {}
     for name in names:
-        joint = robot.joint(name)
+        joint = _wheel(robot, name)
         rotation = poses[joint.parent][:3, :3]
         axis = rotation @ rpy_matrix(joint.origin.rpy) @ np.asarray(
             joint.axis if joint.axis is not None else (1.0, 0.0, 0.0), dtype=float)
@@ -290,8 +290,15 @@ def wheel_signs(robot: Robot, names: Iterable[str]) -> dict[str, float]:
     return signs
 
 
+def _wheel(robot: Robot, name: str) -> Joint:
+    """The wheel joint `name`, which `resolve_groups` has found in the robot."""
+    joint = robot.joint(name)
+    assert joint is not None, f"no wheel joint '{name}': resolve the groups first"
+    return joint
+
+
 def _wheel_radius(robot: Robot, names: Sequence[str]) -> float | None:
-    link = robot.link(robot.joint(names[0]).child)
+    link = robot.link(_wheel(robot, names[0]).child)
     for collision in link.collisions if link is not None else ():
         if isinstance(collision.geometry, (Cylinder, Sphere)):
             return float(collision.geometry.radius)
@@ -302,7 +309,7 @@ def _separation(robot: Robot, poses: Mapping[str, np.ndarray],
                 group: DriveGroup) -> float | None:
     """Mean y (m) of the left wheels minus that of the right, in the root link's frame."""
     def mean_y(names: Sequence[str]) -> float:
-        return float(np.mean([poses[robot.joint(n).child][1, 3] for n in names]))
+        return float(np.mean([poses[_wheel(robot, n).child][1, 3] for n in names]))
 
     separation = mean_y(group.left) - mean_y(group.right)
     return separation if separation > 0 else None
@@ -313,6 +320,7 @@ def _separation(robot: Robot, poses: Mapping[str, np.ndarray],
 def commands(groups: Sequence[DriveGroup], options: DriveOptions) -> tuple[DriveCommand, ...]:
     """Straight, spin in place and arc, from the options and the first group's size."""
     separation = groups[0].separation
+    assert separation is not None, "resolve the groups first"
     spin = options.spin if options.spin is not None else 2.0 * options.speed / separation
     radius = options.arc_radius if options.arc_radius is not None else separation
     return (DriveCommand("straight", options.speed, 0.0), DriveCommand("spin", 0.0, spin),
@@ -324,6 +332,8 @@ def wheel_targets(groups: Sequence[DriveGroup], signs: Mapping[str, float],
     """Joint velocity (rad/s) of every wheel for a twist (diff-drive kinematics)."""
     targets = {}
     for group in groups:
+        assert group.separation is not None and group.radius is not None, \
+            "resolve the groups first"
         half = command.angular * group.separation * group.separation_multiplier / 2.0
         radius = group.radius * group.radius_multiplier
         for names, speed in ((group.left, command.linear - half),

@@ -120,8 +120,9 @@ class Engine:
             SimMeshError: a mesh cannot be resolved or read.
         """
         self.require()
-        return importlib.import_module(self.module).build_scene(robot, meshes, options, hold,
-                                                                 parts)
+        scene: EngineScene = importlib.import_module(self.module).build_scene(
+            robot, meshes, options, hold, parts)
+        return scene
 
 
 def _require_mujoco() -> Any:

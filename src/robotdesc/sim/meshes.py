@@ -7,6 +7,9 @@ face arrays in memory, so no temporary file is left behind. References are found
 mesh locator lint uses (`robotdesc.mesh.locate.MeshLocator`: package paths resolved by
 robotdesc without ROS, a relative path from the file that wrote the `<mesh>`, absolute paths
 only when the config allows them).
+
+`SimMeshError` lives in `robotdesc.errors` with every other error; it is re-exported here, its
+old home.
 """
 
 from __future__ import annotations
@@ -17,10 +20,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from robotdesc.errors import InputError, MeshError
+from robotdesc.errors import MeshError, SimMeshError
 from robotdesc.mesh.locate import MeshLocator
 from robotdesc.model.elements import MeshRef
 from robotdesc.source import Span
+
+__all__ = ["MUJOCO_STL_FACE_LIMIT", "NATIVE_FORMATS", "MeshAsset", "MeshAssets", "SimMeshError",
+           "indexed"]
 
 log = logging.getLogger(__name__)
 
@@ -28,10 +34,6 @@ log = logging.getLogger(__name__)
 NATIVE_FORMATS = frozenset({"stl", "obj"})
 #: MuJoCo's STL reader refuses files with more faces than this.
 MUJOCO_STL_FACE_LIMIT = 200_000
-
-
-class SimMeshError(InputError):
-    """A mesh of the description cannot be given to the simulator (names the `<mesh>` line)."""
 
 
 @dataclass(frozen=True, eq=False)

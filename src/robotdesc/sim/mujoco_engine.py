@@ -112,7 +112,8 @@ class MujocoScene(EngineScene):
         return (self.data.xpos[body].copy(), self.data.xmat[body].reshape(3, 3).copy())
 
     def link_position(self, link: str) -> np.ndarray:
-        return self.data.xpos[self.model.body(link).id].copy()
+        position: np.ndarray = self.data.xpos[self.model.body(link).id].copy()
+        return position
 
     def finite(self) -> bool:
         return bool(np.all(np.isfinite(self.data.qpos)) and np.all(np.isfinite(self.data.qvel)))

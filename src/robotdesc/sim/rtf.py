@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from types import ModuleType
+from typing import Any
 
 from robotdesc.sim.backend import import_mujoco
 from robotdesc.sim.hold import HoldOptions, apply_hold, neutral_controls
@@ -82,8 +84,10 @@ def measure_rtf(scene: Scene, label: str, seconds: float = 2.0,
                           wall, len(robot_geoms), vertices)
 
 
-def _step(mujoco, model, data, steps: int) -> None:
-    """`steps` MuJoCo steps, in one call when the bindings allow it (less Python overhead)."""
+def _step(mujoco: ModuleType, model: Any, data: Any, steps: int) -> None:
+    """`steps` MuJoCo steps, in one call when the bindings allow it (less Python overhead).
+
+    `model` and `data` are the `mujoco.MjModel` and `mujoco.MjData` (MuJoCo has no types)."""
     try:
         mujoco.mj_step(model, data, nstep=steps)
     except TypeError:  # older bindings: no nstep

@@ -6,9 +6,9 @@ import logging
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
-from robotdesc.errors import SimModelError, SimOptionError
+from robotdesc.errors import SimMeshError, SimModelError, SimOptionError
 from robotdesc.model.elements import Robot
-from robotdesc.sim.meshes import MeshAssets, SimMeshError
+from robotdesc.sim.meshes import MeshAssets
 from robotdesc.sim.mujoco_build import build_scene
 from robotdesc.sim.rtf import RtfComparison, measure_rtf
 from robotdesc.sim.scene import SceneOptions

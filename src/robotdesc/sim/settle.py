@@ -297,7 +297,7 @@ class _Watcher:
 
 def nudged(scene: Scene, nudge: float) -> np.ndarray:
     """The start configuration with every non-mimic joint moved `nudge` off neutral (inward)."""
-    qpos = scene.qpos0.copy()
+    qpos: np.ndarray = scene.qpos0.copy()
     if nudge == 0:
         return qpos
     followers = {mimic.follower: mimic for mimic in scene.mimics}

@@ -215,7 +215,8 @@ def _touch(a: tuple[Any, Any], b: tuple[Any, Any], request: Any) -> bool:
 
     result = coal.CollisionResult()
     coal.collide(a[0], a[1], b[0], b[1], request, result)
-    return result.isCollision()
+    touching: bool = result.isCollision()
+    return touching
 
 
 def _near_pairs(spec: SceneSpec, world: list[np.ndarray]) -> tuple[tuple[str, str], ...]:

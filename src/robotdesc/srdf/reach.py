@@ -44,7 +44,8 @@ def bounding_sphere(points: np.ndarray) -> Sphere:
     low, high = points.min(axis=0), points.max(axis=0)
     centre = (low + high) / 2.0
     radius = float(np.linalg.norm(points - centre, axis=1).max())
-    return Sphere(tuple(float(v) for v in centre), radius)
+    x, y, z = (float(v) for v in centre)
+    return Sphere((x, y, z), radius)
 
 
 def link_spheres(shapes: Iterable[CollisionShape]) -> dict[str, Sphere]:
@@ -116,7 +117,8 @@ def sweep(joint: Joint, sphere: Sphere, span: tuple[float, float] | None) -> Sph
         centre = _move(joint, span[0], centre)
     origin = pose_matrix(joint.origin)
     placed = origin[:3, :3] @ centre + origin[:3, 3]
-    return Sphere(tuple(float(v) for v in placed), radius)
+    x, y, z = (float(v) for v in placed)
+    return Sphere((x, y, z), radius)
 
 
 def _move(joint: Joint, value: float, centre: np.ndarray) -> np.ndarray:
@@ -217,7 +219,7 @@ class Reach:
 
 def reach(robot: Robot, shapes: Iterable[CollisionShape]) -> Reach:
     """The swept spheres of every link that has collision shapes (see the module doc)."""
-    parents = {}
+    parents: dict[str, Joint] = {}
     for joint in robot.joints:
         parents.setdefault(joint.child, joint)
     shapes = list(shapes)

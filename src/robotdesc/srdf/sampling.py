@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
 
 from robotdesc.kinematics.configuration import follow_mimics, independent_joints, joint_range
@@ -31,8 +33,10 @@ def sample_positions(robot: Robot, count: int, seed: int) -> tuple[list[str], np
     followers = [name for name in complete if name not in names]
     if not followers:
         return names, driven
-    # follow_mimics is affine per joint, so whole columns go through it at once
-    values = follow_mimics(robot, {name: driven[:, k] for k, name in enumerate(names)})
+    # follow_mimics is affine per joint, so whole columns go through it at once (arrays in
+    # place of its floats)
+    columns_by_name = cast("dict[str, float]", {name: driven[:, k] for k, name in enumerate(names)})
+    values = follow_mimics(robot, columns_by_name)
     rows = np.column_stack([np.broadcast_to(np.asarray(values[name], dtype=float), (count,))
                             for name in followers])
     return names + followers, np.hstack([driven, rows])

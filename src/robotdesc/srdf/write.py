@@ -24,13 +24,14 @@ def render_srdf(matrix: CollisionMatrix) -> str:
              .replace("&lt;!--", "<!--").replace("--&gt;", "-->"),
              f"<robot name={quote_attribute(matrix.robot)}>"]
     for pair in matrix.disabled():
+        assert pair.reason is not None  # `disabled` keeps the pairs with a reason
         lines.append(f"  <disable_collisions link1={quote_attribute(pair.link1)} "
                      f"link2={quote_attribute(pair.link2)} reason=\"{pair.reason.value}\"/>")
     lines.append("</robot>")
     return "\n".join(lines) + "\n"
 
 
-def report_dict(matrix: CollisionMatrix) -> dict:
+def report_dict(matrix: CollisionMatrix) -> dict[str, object]:
     """The JSON report as a dict: N, seed, and every pair with its collision fraction."""
     return {
         "version": REPORT_VERSION,
