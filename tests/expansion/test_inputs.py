@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from robotdesc import errors
-from robotdesc.expansion import ExpandOptions, confine, expand_file, runner
+from robotdesc.expansion import ExpandOptions, confine, expand_file, looks_binary, runner
 from robotdesc.expansion.packages import PackageResolver, PackageResolverConfig
 
 SRC = str(Path(__file__).resolve().parents[2] / "src")
@@ -213,6 +213,23 @@ def test_a_binary_file_named_as_the_description_is_one_line(tmp_path):
     errors_ = [line for line in done.stderr.splitlines() if "error" in line]
     assert errors_ == ["part.stl: error: binary data (.stl), not a URDF or xacro description"]
     assert "\x00" not in done.stdout + done.stderr and "\ufffd" not in done.stdout + done.stderr
+
+
+def test_binary_data_without_nul_bytes_is_binary_too(tmp_path):
+    """An STL header and floats without a NUL byte still hold control bytes XML forbids."""
+    stl = tmp_path / "scan.stl"
+    stl.write_bytes(b"Exported by CAD" + bytes([0x93, 0x01, 0x7f, 0x1b, 0xc3, 0x05]) * 40)
+    done = cli("lint", str(stl), cwd=tmp_path)
+    assert done.returncode == 2
+    assert done.stderr.splitlines()[0] == \
+        "scan.stl: error: binary data (.stl), not a URDF or xacro description"
+    assert "\x1b" not in done.stdout + done.stderr
+
+
+@pytest.mark.parametrize("text", ["<robot name='a'>\t<link name='b'/>\r\n</robot>",
+                                  "<?xml version='1.0' encoding='latin-1'?><robot name='\xe9'/>"])
+def test_text_with_tabs_or_latin_1_is_not_binary(text):
+    assert not looks_binary(text.encode("latin-1"))
 
 
 # --- no confinement available -------------------------------------------------------------

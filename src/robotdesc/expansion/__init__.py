@@ -85,12 +85,17 @@ def holds_substitutions(data: bytes) -> bool:
 _UNICODE_BOMS = (b"\xef\xbb\xbf", b"\xff\xfe", b"\xfe\xff")
 
 
+# C0 control bytes that XML 1.0 forbids anywhere in a document (tab, newline and carriage
+# return are allowed): text a description is written in never holds them, binary data does.
+_FORBIDDEN_CONTROLS = bytes([*range(0x00, 0x09), 0x0B, 0x0C, *range(0x0E, 0x20)])
+
+
 def looks_binary(data: bytes) -> bool:
     """True for data that is no text a description could be written in (an STL, an image)."""
     head = data[:8192]
     if head.startswith(_UNICODE_BOMS[1:]):  # UTF-16 XML has NUL bytes but is text
         return False
-    return b"\x00" in head
+    return len(head.translate(None, _FORBIDDEN_CONTROLS)) != len(head)
 
 
 def _read_checked(path: Path) -> bytes:
