@@ -242,6 +242,12 @@ def test_expand_xacro_to_stdout_with_arguments(project: Path) -> None:
     proc = run("expand", "robot.urdf.xacro", "prefix:=left_", cwd=project)
     assert proc.returncode == 0, proc.stderr
     assert 'name="left_base"' in proc.stdout and "_rd_src" not in proc.stdout
+    # arguments after options, as xacro and roslaunch users write them
+    proc = run("expand", "robot.urdf.xacro", "--no-cache", "prefix:=right_", cwd=project)
+    assert proc.returncode == 0, proc.stderr
+    assert 'name="right_base"' in proc.stdout
+    proc = run("expand", "robot.urdf.xacro", "--no-cache", "--bogus", "prefix:=x", cwd=project)
+    assert proc.returncode == 2 and "unrecognized arguments: --bogus" in proc.stderr
 
 
 def test_expand_undefined_property_reports_its_line(project: Path) -> None:

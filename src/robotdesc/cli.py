@@ -30,7 +30,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     words = list(sys.argv[1:] if argv is None else argv)
     parser = build_parser(words)
     try:
-        ns = parser.parse_args(words)
+        ns = _parse(parser, words)
     except SystemExit as exc:  # --help, --version (0) and usage errors (2)
         return exc.code if isinstance(exc.code, int) else EXIT_INPUT
     verbose: int = getattr(ns, "verbose", 0)
@@ -39,6 +39,19 @@ def main(argv: Sequence[str] | None = None) -> int:
         return _run(ns, verbose)
     finally:
         restore()  # leave the "robotdesc" logger as it was (main() may run in-process)
+
+
+def _parse(parser: argparse.ArgumentParser, words: list[str]) -> argparse.Namespace:
+    """Parse the command line, letting files and `name:=value` arguments come after options
+    too (`robotdesc lint FILE --no-cache name:=value`, as xacro and roslaunch users write)."""
+    ns, extra = parser.parse_known_args(words)
+    inputs = getattr(ns, "inputs", None)
+    if extra and isinstance(inputs, list) and not any(w.startswith("-") for w in extra):
+        inputs.extend(extra)
+        return ns
+    if extra:
+        parser.parse_args(words)  # argparse's own usage error for what it does not know
+    return ns
 
 
 def _run(ns: argparse.Namespace, verbose: int) -> int:

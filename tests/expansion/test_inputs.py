@@ -175,6 +175,21 @@ def test_an_undeclared_argument_is_an_error_finding_with_did_you_mean(tmp_path):
 
 
 @needs_confinement
+def test_an_argument_read_without_declaration_is_no_unknown_argument(tmp_path):
+    """TALOS' included files read `$(arg enable_crane)` without an `<xacro:arg>`: xacro
+    allows it, and the argument is needed, so it is no X102 (held-out packages)."""
+    source = tmp_path / "talos.urdf.xacro"
+    source.write_text(f'<robot name="t" {XACRO_NS}>\n  <link name="base_$(arg suffix)"/>\n'
+                      '  <link name="${xacro.arg(\'crane\')}"/>\n</robot>\n')
+    done = cli("lint", "--no-cache", "--format", "json", str(source), "suffix:=a", "crane:=c",
+               "sufix:=b", cwd=tmp_path)
+    found = [d for d in json.loads(done.stdout)["diagnostics"] if d["code"] == "X102"]
+    assert [d["message"] for d in found] == [
+        "xacro argument 'sufix' is not declared by any <xacro:arg> nor read by $(arg); "
+        "did you mean 'suffix'?"]
+
+
+@needs_confinement
 def test_a_declared_argument_says_nothing(tmp_path):
     source = tmp_path / "tracks.urdf.xacro"
     source.write_text(ARGS_XACRO)

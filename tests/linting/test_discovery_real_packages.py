@@ -74,6 +74,45 @@ def test_include_cycles_end(tmp_path) -> None:
     assert description_kind(str(tmp_path / "a.xacro")) == "library"
 
 
+# --- fragments other files include ------------------------------------------------------
+
+
+def test_files_another_description_includes_are_fragments_not_targets(tmp_path) -> None:
+    """TALOS and the Shadow hand: `talos_full_common.urdf.xacro` (included by the robots),
+    `${side}_arm.transmissions.urdf.xacro` (included inside a macro of a library) and a
+    parameter file a library includes make links or evaluate parameters of their includer;
+    linted alone they fail. A model picked by `$(arg model).urdf.xacro` stays a target."""
+    pkg = package(tmp_path / "talos_description", "talos_description")
+    write(pkg / "urdf" / "common.urdf.xacro", f"<robot {XACRO}><link name='torso'/></robot>")
+    for side in ("left", "right"):
+        write(pkg / "urdf" / f"{side}_arm.transmissions.urdf.xacro",
+              f"<robot {XACRO}><link name='${{name}}_t'/></robot>")
+    write(pkg / "urdf" / "arm.urdf.xacro", f"<robot {XACRO}><xacro:macro name='arm' "
+          "params='side'><xacro:include filename='$(find talos_description)/urdf/"
+          "${side}_arm.transmissions.urdf.xacro'/></xacro:macro></robot>")
+    write(pkg / "robots" / "full.urdf.xacro", f"<robot name='t' {XACRO}><xacro:include "
+          "filename='$(find talos_description)/urdf/common.urdf.xacro'/>"
+          "<xacro:include filename='../urdf/arm.urdf.xacro'/><xacro:arm side='left'/></robot>")
+    write(pkg / "robots" / "any.urdf.xacro", f"<robot name='a' {XACRO}><xacro:include "
+          "filename='$(arg model).urdf.xacro'/></robot>")
+    write(pkg / "robots" / "model_a.urdf.xacro", f"<robot {XACRO}><link name='a'/></robot>")
+    found = discover_targets(str(pkg))
+    assert sorted(Path(t.path).name for t in found.targets) == [
+        "any.urdf.xacro", "full.urdf.xacro", "model_a.urdf.xacro"]
+    assert sorted(Path(f).name for f in found.fragments) == [
+        "common.urdf.xacro", "left_arm.transmissions.urdf.xacro",
+        "right_arm.transmissions.urdf.xacro"]
+
+
+def test_files_that_only_include_each_other_stay_targets(tmp_path) -> None:
+    write(tmp_path / "a.urdf.xacro", f"<robot {XACRO}><link name='a'/>"
+          "<xacro:include filename='b.urdf.xacro'/></robot>")
+    write(tmp_path / "b.urdf.xacro", f"<robot {XACRO}><link name='b'/>"
+          "<xacro:include filename='a.urdf.xacro'/></robot>")
+    found = discover_targets(str(tmp_path))
+    assert sorted(Path(t.path).name for t in found.targets) == ["a.urdf.xacro", "b.urdf.xacro"]
+
+
 # --- empty placeholders ------------------------------------------------------------------
 
 

@@ -209,6 +209,9 @@ def _write_discovery(stream: TextIO, discovery: Discovery) -> None:
                  f"{'y' if len(discovery.libraries) == 1 else 'ies'}")
         log.info("macro libraries: %s",
                  listing([target_name(p, (), base) for p in discovery.libraries]))
+    if discovery.fragments:
+        text += (f"; skipped {len(discovery.fragments)} file(s) another target includes: "
+                 + listing([target_name(p, (), base) for p in discovery.fragments]))
     if discovery.unlisted:
         text += (f"; skipped {len(discovery.unlisted)} file(s) not in their config's targets: "
                  + listing([target_name(p, (), base) for p in discovery.unlisted]))

@@ -183,15 +183,17 @@ def _with_notes(expanded: Expanded, args: Mapping[str, str], options: ExpandOpti
             f"'{used.default}' was used; add --env {used.name}", used.span))
     declared = dict(reversed(expanded.declared_args))  # the first declaration wins
     for name in sorted(args):
-        if name in declared or name in options.unchecked_args:
+        if name in declared or name in expanded.read_args or name in options.unchecked_args:
             continue
-        close = difflib.get_close_matches(name, list(declared), 1)
+        known = [*declared, *(read for read in expanded.read_args if read not in declared)]
+        close = difflib.get_close_matches(name, known, 1)
         hint = f"; did you mean '{close[0]}'?" if close else (
-            "; the description declares no arguments" if not declared else "")
+            "; the description declares no arguments" if not known else "")
         notes.append(ExpansionNote(
             "unknown-argument", name,
-            f"xacro argument '{name}' is not declared by any <xacro:arg>{hint}",
-            declared[close[0]] if close else Span(expanded.source, 1)))
+            f"xacro argument '{name}' is not declared by any <xacro:arg> nor read by $(arg)"
+            f"{hint}", declared.get(close[0], Span(expanded.source, 1)) if close
+            else Span(expanded.source, 1)))
     for note in notes:
         log.warning("%s: %s", note.span, note.message)
     return dataclasses.replace(expanded, notes=tuple(notes)) if notes else expanded

@@ -28,7 +28,8 @@ from robotdesc.source import Span
 
 log = logging.getLogger(__name__)
 
-_FORMAT = 4  # 2: declared_args and env_defaults; 3: the key inside; 4: passed values
+_FORMAT = 5  # 2: declared_args and env_defaults; 3: the key inside; 4: passed values;
+#              5: read_args
 #: The largest entry read (an expanded document of a very large robot is a few MB).
 MAX_ENTRY_BYTES = 64 << 20
 

@@ -69,6 +69,24 @@ class DoctypeRefused(Exception):
         self.path, self.line, self.col = path, line, col
 
 
+class RecordingArgs(dict[str, str]):
+    """The xacro arguments passed (`name:=value`), remembering which names were read.
+
+    xacro reads an argument by indexing this mapping (`$(arg name)`, `xacro.arg('name')`);
+    a name passed but never declared by `<xacro:arg>` may still be read that way, which
+    xacro allows, so it is no unknown argument.
+    """
+
+    def __init__(self, passed: dict[str, str]) -> None:
+        super().__init__(passed)
+        self.read: set[str] = set()
+
+    def __getitem__(self, name: str) -> str:
+        value = super().__getitem__(name)
+        self.read.add(name)
+        return value
+
+
 class IncludeCycle(Exception):
     """A file includes itself, directly or through other files."""
 

@@ -89,6 +89,8 @@ class Expanded:
         from_xacro: True when xacro ran (False for a plain URDF read as is).
         args: the xacro arguments used.
         declared_args: every evaluated `<xacro:arg>`: (name, where it is declared).
+        read_args: the names of passed arguments the expansion read (`$(arg name)`), declared
+            or not: xacro lets a file read an argument it never declares.
         env_defaults: optenv lookups of variables that were not passed.
         notes: what the rules should report about the inputs (computed by the parent for
             this run, from the facts above and its own environment; never cached).
@@ -103,14 +105,16 @@ class Expanded:
     from_xacro: bool = False
     args: tuple[tuple[str, str], ...] = ()
     declared_args: tuple[tuple[str, Span], ...] = ()
+    read_args: tuple[str, ...] = ()
     env_defaults: tuple[EnvDefault, ...] = ()
     notes: tuple[ExpansionNote, ...] = ()
 
 
 def decode_input_facts(data: dict[str, Any]) -> dict[str, Any]:
-    """The `declared_args` and `env_defaults` of an `Expanded` encoded with
+    """The `declared_args`, `read_args` and `env_defaults` of an `Expanded` encoded with
     `dataclasses.asdict` (for the expansion cache), as keyword arguments of `Expanded`."""
     return {"declared_args": tuple((name, Span(**span))
                                    for name, span in data.get("declared_args", ())),
+            "read_args": tuple(data.get("read_args", ())),
             "env_defaults": tuple(EnvDefault(d["name"], d["default"], Span(**d["span"]))
                                   for d in data.get("env_defaults", ()))}

@@ -254,5 +254,6 @@ def _expanded(answer: dict[str, Any], path: Path, args: dict[str, str]) -> Expan
         macro_recursion=recursion, from_xacro=True, args=tuple(sorted(args.items())),
         declared_args=tuple((name, _span(span) or Span(str(path)))
                             for name, span in answer.get("declared_args", ())),
+        read_args=tuple(answer.get("read_args", ())),
         env_defaults=tuple(EnvDefault(name, default, _span(span) or Span(str(path)))
                            for name, default, span in answer.get("env_defaults", ())))

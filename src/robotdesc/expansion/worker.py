@@ -209,6 +209,7 @@ def run_job(job: _Job, guard: sandbox.Guard) -> dict[str, object]:
     for folder in job["guard_roots"]:
         guard.allow_root(folder)
     state = hooks.ExpansionState(max_macro_depth=job["max_macro_depth"])
+    passed = hooks.RecordingArgs({})
 
     def find_package(name: str) -> str:
         found = resolver.find(name)
@@ -230,7 +231,8 @@ def run_job(job: _Job, guard: sandbox.Guard) -> dict[str, object]:
     try:
         xacro.init_stacks(top)
         doc = xacro.parse(None, top)
-        xacro.process_doc(doc, mappings=dict(job["args"]))
+        passed = hooks.RecordingArgs(dict(job["args"]))
+        xacro.process_doc(doc, mappings=passed)
         text = doc.documentElement.toxml()
     except hooks.DoctypeRefused as exc:
         return _failure("XmlSyntaxError", str(exc), [exc.path, exc.line, exc.col])
@@ -258,6 +260,7 @@ def run_job(job: _Job, guard: sandbox.Guard) -> dict[str, object]:
             "macro_recursion": recursion,
             "declared_args": [[name, _span(src, state.files)]
                               for name, src in state.declared_args.items()],
+            "read_args": sorted(passed.read),
             "env_defaults": [[name, default, _span(src, state.files)]
                              for name, default, src in state.env_defaults]}
 

@@ -3,8 +3,9 @@
 A file named on the command line is linted as given. A directory (a package or a whole
 workspace) is searched for top-level descriptions: `*.urdf` files, and `*.xacro` /
 `*.urdf.xacro` files (or `.urdf` files written in xacro) whose `<robot>` root makes a robot
-rather than merely defining macros or properties for others to include. An empty `<robot/>`
-placeholder is skipped with a note. When the config that governs a file lists `targets`,
+rather than merely defining macros or properties for others to include. A file that another
+robot found there includes is a fragment of that robot, not a robot of its own (it is linted
+through its includer). An empty `<robot/>` placeholder is skipped with a note. When the config that governs a file lists `targets`,
 those targets (with their argument matrices) replace discovery for the files that config
 governs.
 
@@ -16,6 +17,8 @@ directory has no workspace markers (.git, src/, colcon files).
 from __future__ import annotations
 
 import dataclasses
+import fnmatch
+import glob
 import logging
 import os
 import re
@@ -44,6 +47,8 @@ _XACRO_URIS = {"http://www.ros.org/wiki/xacro", "http://ros.org/wiki/xacro",
                "http://wiki.ros.org/xacro", "http://www.ros.org/xacro"}
 #: `$(find pkg)` at the start of an include's filename.
 _FIND = re.compile(r"^\$\(find ([A-Za-z0-9_\-]+)\)")
+#: A `${...}` or `$(...)` substitution inside an include's filename.
+_SUBSTITUTION = re.compile(r"\$\{[^}]*\}|\$\([^)]*\)")
 #: How deep includes are followed to decide whether a file makes a robot.
 _MAX_INCLUDE_DEPTH = 8
 
@@ -88,6 +93,8 @@ class Discovery:
         libraries: files skipped as macro libraries (or not robots at all).
         unlisted: files skipped because their config lists `targets` without them.
         placeholders: files skipped because they are an empty `<robot/>`.
+        fragments: files that would make a robot but that another robot found by the same
+            search includes (e.g. a `*_common.urdf.xacro`), skipped: its includer is linted.
         packages: the (name, folder) pairs found under the directory and given to its
             targets.
     """
@@ -99,6 +106,7 @@ class Discovery:
     unlisted: tuple[str, ...] = ()
     placeholders: tuple[str, ...] = ()
     packages: tuple[tuple[str, str], ...] = ()
+    fragments: tuple[str, ...] = ()
 
 
 def target_name(path: str, variant: Variant = (), base: str | None = None) -> str:
@@ -154,7 +162,9 @@ def discover_targets(path: str, config: Config | None = None) -> Discovery:
                     "URDF: %s", len(semantic),
                     ", ".join(target_name(f, (), path) for f in semantic[:5])
                     + (f", ... ({len(semantic) - 5} more)" if len(semantic) > 5 else ""))
-    listed = _listed_files(path, [*robots, *libraries, *placeholders], configs)
+    fragments = included_by_others(robots, libraries, dict(packages))
+    robots = [file for file in robots if file not in fragments]
+    listed = _listed_files(path, [*robots, *libraries, *placeholders, *fragments], configs)
     targets, unlisted = [], []
     for file in sorted(set(robots) | set(listed)):
         settings = _with_packages(configs.for_file(file), packages, file)
@@ -173,7 +183,64 @@ def discover_targets(path: str, config: Config | None = None) -> Discovery:
                          f"only macros) under this directory{only}", Span(path))
     skipped = tuple(f for f in libraries if f not in set(listed))
     return Discovery(path, True, tuple(dict.fromkeys(targets)), skipped, tuple(unlisted),
-                     skipped_placeholders, packages)
+                     skipped_placeholders, packages,
+                     tuple(f for f in sorted(fragments) if f not in set(listed)))
+
+
+def included_by_others(robots: list[str], others: list[str],
+                       packages: dict[str, str]) -> set[str]:
+    """The files of `robots` that another description file of the search (a robot or a
+    library in `others`) includes: fragments of a robot, not robots.
+
+    An include is followed as far as it can be without expanding: `$(find pkg)` from
+    `packages`, and a name with `${...}`/`$(...)` in it as a pattern when a literal part of
+    the name is left besides its extension (`${side}_arm.transmissions.urdf.xacro` matches
+    both sides; `$(arg model).urdf.xacro` matches nothing). Fragments are those reached from
+    a file nobody includes; files that only include each other are kept (no includer would
+    be left to lint them).
+    """
+    files = list(dict.fromkeys([*robots, *others]))
+    by_real = {os.path.realpath(file): file for file in files}
+    includes: dict[str, set[str]] = {file: set() for file in files}
+    for file in files:
+        root = _read_root(file)
+        if root is None:
+            continue
+        for element in root.iter():
+            if isinstance(element.tag, str) and _xacro_name(element) == ("include", True):
+                pattern = _include_pattern(element.get("filename") or "", file, packages)
+                if pattern is not None:
+                    includes[file] |= {by_real[real] for real in fnmatch.filter(by_real, pattern)
+                                       if by_real[real] != file}
+    included = set().union(*includes.values())
+    reached: set[str] = set()
+    todo = [file for file in files if file not in included]
+    while todo:
+        for child in includes[todo.pop()] - reached:
+            reached.add(child)
+            todo.append(child)
+    return reached & set(robots)
+
+
+def _include_pattern(filename: str, including: str, packages: dict[str, str]) -> str | None:
+    """The real path (an fnmatch pattern when the name holds substitutions) of the file an
+    include names, or None when it cannot be told without expanding."""
+    found = _without_find(filename, including, packages)
+    if found is None:
+        return None
+    filename = found
+    folder, name = os.path.split(filename)
+    if not name or "$" in _SUBSTITUTION.sub("", filename) or _SUBSTITUTION.search(folder):
+        return None
+    pieces = _SUBSTITUTION.split(name)
+    if len(pieces) > 1:
+        literal = "".join(pieces)
+        for suffix in (".xacro", ".urdf"):
+            literal = literal.removesuffix(suffix)
+        if not literal:
+            return None
+    folder = os.path.realpath(os.path.join(os.path.dirname(including), folder))
+    return os.path.join(glob.escape(folder), "*".join(glob.escape(piece) for piece in pieces))
 
 
 def is_placeholder(path: str) -> bool:
@@ -290,19 +357,27 @@ def _makes_something(path: str, root: XmlElement, packages: dict[str, str], seen
 
 def _include_path(filename: str, including: str, packages: dict[str, str]) -> str | None:
     """The file an include names, when it can be known without expanding; else None."""
-    match = _FIND.match(filename)
-    if match:
-        folder = packages.get(match.group(1))
-        if folder is None:
-            found = enclosing_package(including)
-            folder = str(found[1]) if found and found[0] == match.group(1) else None
-        if folder is None:
-            return None
-        filename = folder + filename[match.end():]
+    found = _without_find(filename, including, packages)
+    if found is None:
+        return None
+    filename = found
     if "$" in filename or not filename:
         return None
     resolved = os.path.join(os.path.dirname(including), filename)
     return resolved if os.path.isfile(resolved) else None
+
+
+def _without_find(filename: str, including: str, packages: dict[str, str]) -> str | None:
+    """`filename` with a leading `$(find pkg)` replaced by the package's folder (from
+    `packages`, or the including file's own package); None when pkg is not known."""
+    match = _FIND.match(filename)
+    if not match:
+        return filename
+    folder = packages.get(match.group(1))
+    if folder is None:
+        found = enclosing_package(including)
+        folder = str(found[1]) if found and found[0] == match.group(1) else None
+    return None if folder is None else folder + filename[match.end():]
 
 
 def _packages_under(directory: str) -> tuple[tuple[str, str], ...]:

@@ -147,10 +147,13 @@ def link_and_joint_share_name(robot: Robot, ctx: RuleContext) -> Iterator[Findin
 
     Why is this bad?
     URDF keeps links and joints apart, but SDFormat does not: Gazebo converts the URDF to
-    SDF, where the links and joints of a model share one name scope, and refuses the
-    model ("non-unique names") or renames one of them, which breaks plugins and
-    controllers that refer to it. Tools that key frames by name (TF trees of some
-    bridges, MuJoCo's converter) stumble too.
+    SDF, where the links, joints and frames of a model share one name scope. A moving joint
+    stays a joint next to the link; a fixed joint that the converter lumps into its parent
+    is kept as a `//frame` named after the joint, next to a `//frame` named after the lumped
+    link. Either way two frames share a name: libsdformat reports DUPLICATE_NAME for the
+    SDFormat 1.7+ it converts to (Gazebo Fortress and later), and older versions rename one
+    of them with a warning, which breaks plugins and controllers that refer to it. Tools that
+    key frames by name (TF trees of some bridges, MuJoCo's converter) stumble too.
 
     Example
     ```xml
@@ -176,10 +179,12 @@ def link_and_joint_share_name(robot: Robot, ctx: RuleContext) -> Iterator[Findin
             if link.where is not None:
                 same = joint.where is not None and joint.where.span.path == link.where.span.path
                 at = f" (the link is at {f'line {link.where.span.line}' if same else link.where})"
+            kept_as = ("a frame, where a fixed joint is lumped," if joint.type == "fixed"
+                       else "a joint")
             yield Finding(f"joint '{joint.name}' has the name of a link{at}; Gazebo's SDF "
-                          f"conversion refuses links and joints that share a name: rename "
-                          f"the joint (e.g. '{joint.name}_joint')", joint.where,
-                          f"joint:{joint.name}")
+                          f"conversion keeps it as {kept_as} in the link's name scope, a "
+                          f"duplicate name (an error in SDFormat 1.7+): rename the joint "
+                          f"(e.g. '{joint.name}_joint')", joint.where, f"joint:{joint.name}")
 
 
 @rule("J109", "negative-joint-dynamics", family="joints", severity=Severity.ERROR)

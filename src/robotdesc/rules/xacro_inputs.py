@@ -22,7 +22,8 @@ def _notes(ctx: RuleContext, kind: str) -> Iterator[Finding]:
 @rule("X102", "unknown-xacro-argument", family=FAMILY, severity=Severity.ERROR,
       needs=("expansion",))
 def unknown_xacro_argument(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
-    """Finds a `name:=value` argument that no `<xacro:arg>` of the description declares.
+    """Finds a `name:=value` argument that no `<xacro:arg>` of the description declares
+    and no `$(arg name)` reads (xacro lets a file read an argument it never declares).
 
     Reported at the closest declared argument (named in the message), or at the top file
     when none is close.
