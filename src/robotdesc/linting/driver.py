@@ -71,7 +71,8 @@ def lint_file(path: str, config: Config | None = None, *,
     registered = all_rules()
     rules = select_rules(registered, chosen_select, chosen_ignore)
     facts = ExpansionFacts(expanded.macro_recursion, expanded.files_read, expanded.from_xacro,
-                           notes=expanded.notes)
+                           notes=expanded.notes,
+                           package_folders=tuple(p.path for p in expanded.packages))
     fallback = robot.where or Provenance(Span(expanded.source))
     document = SourceDocument(expanded.xml, expanded.source, tuple(expanded.files))
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import posixpath
 import re
 from collections.abc import Iterator
 
@@ -30,6 +31,18 @@ def _is_absolute(filename: str) -> bool:
     return filename.startswith("/") or bool(_WINDOWS_DRIVE.match(filename))
 
 
+def _made_by_find(filename: str, ctx: RuleContext) -> bool:
+    """Whether an absolute path lies in a package folder that `$(find pkg)` resolved in this
+    expansion: the source wrote `$(find pkg)/...` (portable); the expanded URDF, which holds
+    this machine's path, is made where it is used."""
+    if not ctx.expansion.from_xacro:
+        return False
+    path = posixpath.normpath("/" + filename[len("file://"):].lstrip("/")
+                              if filename.lower().startswith("file://") else filename)
+    return any(path == folder or path.startswith(folder.rstrip("/") + "/")
+               for folder in ctx.expansion.package_folders)
+
+
 @rule("P101", "absolute-mesh-path", family=FAMILY, severity=Severity.WARNING)
 def absolute_mesh_path(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a mesh whose filename is an absolute file system path.
@@ -37,7 +50,8 @@ def absolute_mesh_path(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     Why is this bad?
     The path exists only on the machine that wrote it; on a colleague's laptop, in CI or
     in a container the mesh is missing. Use `package://<package>/...` (resolved through
-    the package, wherever it is installed) or a path relative to the URDF.
+    the package, wherever it is installed) or a path relative to the URDF. A path that
+    `$(find pkg)` made while expanding the xacro is not reported: the source is portable.
 
     Example
     ```xml
@@ -58,7 +72,7 @@ def absolute_mesh_path(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     ```
     """
     for mesh, element in _meshes(robot):
-        if _is_absolute(mesh.filename):
+        if _is_absolute(mesh.filename) and not _made_by_find(mesh.filename, ctx):
             yield Finding(f"mesh filename '{mesh.filename}' is an absolute path",
                           mesh.where, element)
 
@@ -69,7 +83,10 @@ def file_uri_mesh(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
 
     Why is this bad?
     A `file://` URI is an absolute path in disguise: it only resolves on the machine that
-    wrote it. Use `package://<package>/...` or a path relative to the URDF.
+    wrote it. Use `package://<package>/...` or a path relative to the URDF. A URI that
+    `file://$(find pkg)/...` made while expanding the xacro is not reported: the source is
+    portable, and the expanded URDF is made on the machine that uses it (a common way to let
+    Gazebo find meshes without a resource path).
 
     Example
     ```xml
@@ -90,7 +107,7 @@ def file_uri_mesh(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     ```
     """
     for mesh, element in _meshes(robot):
-        if mesh.filename.lower().startswith("file://"):
+        if mesh.filename.lower().startswith("file://") and not _made_by_find(mesh.filename, ctx):
             yield Finding(f"mesh filename '{mesh.filename}' is a file:// URI",
                           mesh.where, element)
 

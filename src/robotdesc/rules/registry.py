@@ -28,12 +28,18 @@ OptionsT = TypeVar("OptionsT", bound="DataclassInstance")
 
 @dataclass(frozen=True)
 class ExpansionFacts:
-    """What the expansion learned that the URDF alone does not show."""
+    """What the expansion learned that the URDF alone does not show.
+
+    Attributes:
+        package_folders: the folders `$(find pkg)` resolved to (absolute), where a path
+            the expansion wrote was made on this machine rather than written in the source.
+    """
 
     macro_recursion: tuple[MacroRecursion, ...] = ()
     files_read: tuple[str, ...] = ()
     from_xacro: bool = False
     notes: tuple[ExpansionNote, ...] = ()
+    package_folders: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)
