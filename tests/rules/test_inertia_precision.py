@@ -52,3 +52,35 @@ def test_default_rules_stay_silent(tmp_path: Path) -> None:
 
 def test_the_inflated_finger_is_the_opt_in_rule(tmp_path: Path) -> None:
     assert _codes(tmp_path, "I206") == [("I206", "link:finger/inertial")]
+
+
+HEAD = """<?xml version="1.0"?>
+<robot name="baxter">
+  <!-- Baxter's head: a 0.55 kg head whose tensor is too wide even for its visual box, and a
+       1 mm collision sphere, a marker: a suggestion from the sphere would be 1000x too small -->
+  <link name="head">
+    <inertial><mass value="0.55"/><inertia ixx="0.5" ixy="0" ixz="0" iyy="0.5" iyz="0" izz="0.1"/></inertial>
+    <visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>
+    <collision><geometry><sphere radius="0.001"/></geometry></collision>
+  </link>
+  <link name="neck">
+    <inertial><mass value="0.55"/><inertia ixx="0.5" ixy="0" ixz="0" iyy="0.5" iyz="0" izz="0.1"/></inertial>
+    <visual><geometry><box size="0.2 0.2 0.1"/></geometry></visual>
+    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
+  </link>
+  <joint name="neck_joint" type="fixed"><parent link="neck"/><child link="head"/></joint>
+</robot>
+"""
+
+
+def test_no_fix_from_geometry_smaller_than_the_body_the_bound_saw(tmp_path: Path) -> None:
+    path = tmp_path / "baxter.urdf"
+    path.write_text(HEAD)
+    run = subprocess.run([sys.executable, "-m", "robotdesc", "lint", str(path), "--select",
+                          "I204", "--format", "json"], check=False, capture_output=True,
+                         text=True, timeout=120,
+                         env={"ROBOTDESC_CACHE_DIR": "off", "PATH": "/usr/bin:/bin"})
+    found = {d["element"]: d for d in json.loads(run.stdout)["diagnostics"]}
+    assert sorted(found) == ["link:head/inertial", "link:neck/inertial"]
+    assert not found["link:head/inertial"].get("fix")
+    assert "<inertia" in json.dumps(found["link:neck/inertial"]["fix"])

@@ -215,7 +215,7 @@ def inertia_impossible_for_geometry(robot: Robot, ctx: RuleContext) -> Iterator[
         found = _certain_violation(ctx, link)
         if found is None or is_isotropic(link):
             continue
-        yield _impossible_finding(robot, ctx, link, found[0], "")
+        yield _impossible_finding(robot, ctx, link, found, "")
 
 
 @rule("I206", "placeholder-inertia-impossible", family=FAMILY, severity=Severity.INFO,
@@ -261,13 +261,15 @@ def placeholder_inertia_impossible(robot: Robot, ctx: RuleContext) -> Iterator[F
     for link in robot.links:
         found = _certain_violation(ctx, link)
         if found is not None and is_isotropic(link):
-            yield _impossible_finding(robot, ctx, link, found[0],
+            yield _impossible_finding(robot, ctx, link, found,
                                       "typed-in tensor diag(I, I, I): ")
 
 
-def _impossible_finding(robot: Robot, ctx: RuleContext, link: Link, axes: list[Axis],
-                        kind: str) -> Finding:
-    """I204's and I206's message: each impossible axis, its declared spread and the bound."""
+def _impossible_finding(robot: Robot, ctx: RuleContext, link: Link,
+                        found: tuple[list[Axis], Bounds], kind: str) -> Finding:
+    """I204's and I206's message: each impossible axis, its declared spread and the bound;
+    the fix only when the geometry it is computed from spans the body the bound saw."""
+    axes, bounds = found
     detail = "; ".join(f"along {axis} the declared tensor spreads the mass by "
                        f"sigma = {sigma:.4g} m, but the geometry allows at most "
                        f"{bound:.4g} m (half its {2 * bound:.4g} m width)"
@@ -277,7 +279,24 @@ def _impossible_finding(robot: Robot, ctx: RuleContext, link: Link, axes: list[A
                    f"collision geometry has the declared inertia at "
                    f"{mass_of(link):g} kg: {detail}"
                    + (f"; likely cause: {cause}" if cause else ""),
-                   _tensor_where(link), link_element(link), _fix(robot, ctx, link))
+                   _tensor_where(link), link_element(link),
+                   _fix(robot, ctx, link) if _spans(ctx, link, bounds) else None)
+
+
+#: The suggestion's geometry must be at least this fraction of the bound's width per axis.
+_SPAN_FRACTION = 0.5
+
+
+def _spans(ctx: RuleContext, link: Link, bounds: Bounds) -> bool:
+    """Whether the geometry a suggestion is computed from (the configured source) spans at
+    least half of `bounds` along every axis: a 1 mm collision sphere under a 20 cm visual
+    mesh (Baxter's head) would suggest a tensor a thousand times too small."""
+    geometry = _meshes(ctx).link_geometry(link)
+    if geometry.bounds is None:
+        return False
+    low, high = _bounds(geometry)
+    return all(h - lo >= _SPAN_FRACTION * (bh - bl)
+               for lo, h, bl, bh in zip(low, high, bounds[0], bounds[1]))
 
 
 def _unit_cause(ctx: RuleContext, link: Link) -> str | None:
