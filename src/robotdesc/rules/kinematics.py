@@ -113,7 +113,8 @@ def zero_configuration_outside_limits(robot: Robot, ctx: RuleContext) -> Iterato
             unit = "m" if joint.type == "prismatic" else "rad"
             how = "its mimic driver at 0 puts it at" if joint.mimic else "the zero configuration puts it at"
             yield Finding(f"joint '{joint.name}': {how} {position:g} {unit}, outside its limits "
-                          f"[{found.lower:g}, {found.upper:g}] {unit}",
+                          f"[{found.lower:g}, {found.upper:g}] {unit}; a Gazebo or MuJoCo spawn "
+                          f"and ros2_control start it there unless an initial position is set",
                           (joint.limit.where if joint.limit else None) or joint.where,
                           f"joint:{joint.name}")
 
