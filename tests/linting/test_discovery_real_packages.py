@@ -218,3 +218,18 @@ def test_folder_lint_resolves_packages_without_workspace_markers(tmp_path, capsy
     captured = capsys.readouterr()
     assert code == 0, captured.err
     assert "1 target(s): robots/arm_description/urdf/arm.urdf.xacro" in captured.err
+
+
+def test_an_unprefixed_include_makes_a_target_whose_lint_says_why(tmp_path, capsys) -> None:
+    """NAO's nao_robot_v4.urdf.xacro: `<include>` without `xacro:` (xacro 1 took it, xacro 2
+    leaves it as is). The folder lint picks it, and S201 names the missing prefix."""
+    write(tmp_path / "body.xacro", f"<robot {XACRO}><link name='torso'/></robot>")
+    top = write(tmp_path / "nao_robot_v4.urdf.xacro",
+                f"<robot name='nao' {XACRO}>\n  <include filename='body.xacro'/>\n</robot>")
+    assert description_kind(str(top)) == "robot"
+    found = discover_targets(str(tmp_path))
+    assert [Path(t.path).name for t in found.targets] == ["nao_robot_v4.urdf.xacro"]
+    assert cli.main(["lint", str(top), "--no-cache", "--select", "S201", "--format",
+                     "json"]) == 1
+    [s201] = json.loads(capsys.readouterr().out)["diagnostics"]
+    assert s201["line"] == 2 and "write <xacro:include>" in s201["message"]

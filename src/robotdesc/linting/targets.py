@@ -190,7 +190,8 @@ def discover_targets(path: str, config: Config | None = None) -> Discovery:
 def included_by_others(robots: list[str], others: list[str],
                        packages: dict[str, str]) -> set[str]:
     """The files of `robots` that another description file of the search (a robot or a
-    library in `others`) includes: fragments of a robot, not robots.
+    library in `others`) includes, with or without the xacro prefix: fragments of a robot,
+    not robots.
 
     An include is followed as far as it can be without expanding: `$(find pkg)` from
     `packages`, and a name with `${...}`/`$(...)` in it as a pattern when a literal part of
@@ -207,7 +208,7 @@ def included_by_others(robots: list[str], others: list[str],
         if root is None:
             continue
         for element in root.iter():
-            if isinstance(element.tag, str) and _xacro_name(element) == ("include", True):
+            if isinstance(element.tag, str) and _xacro_name(element)[0] == "include":
                 pattern = _include_pattern(element.get("filename") or "", file, packages)
                 if pattern is not None:
                     includes[file] |= {by_real[real] for real in fnmatch.filter(by_real, pattern)
@@ -256,10 +257,11 @@ def description_kind(path: str, packages: dict[str, str] | None = None) -> Kind:
 
     A `.urdf` with a `<robot>` root is a robot, unless it is written in xacro (it has xacro
     elements): then it is judged as a xacro file. A xacro file is a robot when its top
-    level (looking inside `xacro:if`/`xacro:unless`) has a `<link>` or `<joint>` or calls a
-    macro, or when it includes, without defining macros itself, a file that makes
-    something: includes are followed (relative paths, and `$(find pkg)` for the `packages`
-    given, name -> folder); one that cannot be followed counts as making a robot. A file
+    level (looking inside `xacro:if`/`xacro:unless`) has a `<link>` or `<joint>`, calls a
+    macro or has an `<include>` without the xacro prefix (old files; the lint says so), or
+    when it includes, without defining macros itself, a file that makes something:
+    includes are followed (relative paths, and `$(find pkg)` for the `packages` given,
+    name -> folder); one that cannot be followed counts as making a robot. A file
     that only defines macros, properties, arguments or materials for others is a library.
     A file that is not well-formed XML counts as a robot, so that linting it reports the
     syntax error.
@@ -332,8 +334,8 @@ def _makes_something(path: str, root: XmlElement, packages: dict[str, str], seen
     for element in _top_level(root):
         name, is_xacro = _xacro_name(element)
         if not is_xacro:
-            if name in ("link", "joint"):
-                return True
+            if name in ("link", "joint", "include"):
+                return True  # an unprefixed <include> (NAO's): linting says what is wrong
         elif name == "macro":
             macros = True
         elif name == "include":

@@ -15,7 +15,7 @@ def _defines(material: Material) -> bool:
     return material.color is not None or material.texture is not None
 
 
-@rule("V101", "undefined-material", family=FAMILY, severity=Severity.ERROR)
+@rule("V101", "undefined-material", family=FAMILY, severity=Severity.WARNING)
 def undefined_material(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a visual whose `<material name=...>` has no color or texture of its own and
     names a material that is never defined with one.
@@ -24,9 +24,10 @@ def undefined_material(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     that name has a `<color>` or a `<texture>`.
 
     Why is this bad?
-    urdfdom rejects the robot ("material ... undefined"); viewers that load it anyway draw
-    the link in a default color. Usually a material defined in a file that is not
-    included, or a misspelt name.
+    The colour meant is lost: urdfdom accepts a material given by name alone (the
+    definition may be elsewhere in the robot) and, finding none, leaves the visual without
+    a colour, so viewers draw the link in a default one. Usually a material defined in a
+    file that is not included, or a misspelt name.
 
     Example
     ```xml

@@ -412,8 +412,17 @@ def _closest(name: str, pool: Iterable[str]) -> str | None:
     return lowered[matches[0]] if matches else None
 
 
+#: xacro's directives: unprefixed, old xacro files meant them (xacro 1 took them, deprecated).
+_XACRO_DIRECTIVES = frozenset({"include", "macro", "property", "arg", "if", "unless",
+                               "insert_block", "element", "attribute"})
+
+
 def _element_hint(tag: str, parent: str, spec: ElementSpec) -> str:
     """Did-you-mean, else where the element belongs."""
+    if tag in _XACRO_DIRECTIVES:
+        return (f"<{tag}> is a xacro directive written without its prefix, which xacro 2 "
+                f"leaves in the URDF as is: write <xacro:{tag}> (with "
+                f"xmlns:xacro=\"http://www.ros.org/wiki/xacro\" on the robot)")
     match = _closest(tag, spec.children)
     if match:
         return f"did you mean <{match}>?"
