@@ -10,8 +10,8 @@ commit, with its xacro arguments and the package folders it needs) this script
    answered from the package folders; no ROS), a whole process, timed;
 3. expands it with `robotdesc expand` (default sandbox, one `--package-path` per package
    folder), cold (`--no-cache`) and warm (cache filled by a previous run), whole processes, timed;
-4. compares both outputs as canonical XML (comments and whitespace-only text dropped,
-   attributes in sorted order) and reports the first difference; robotdesc's internal `_rd_*`
+4. compares both outputs as canonical XML (comments and whitespace-only text dropped, other
+   text with its whitespace runs collapsed, attributes in sorted order) and reports the first difference; robotdesc's internal `_rd_*`
    provenance attributes must not appear in `expand -o` output and are reported if they do;
 5. lints the case (`robotdesc lint --format json`): exit code and findings per code;
 6. prints a table (text, or markdown with --markdown) and, with --json, writes every result.
@@ -286,15 +286,16 @@ def robotdesc_command(verb: str, case: Case, corpus: Path) -> list[str]:
 
 
 def canonical(path: Path) -> etree._Element:
-    """The document with comments, processing instructions and whitespace-only text dropped."""
+    """The document with comments, processing instructions and whitespace-only text dropped,
+    and runs of whitespace in other text collapsed to one space: the xacro command prints with
+    minidom's pretty printer, which re-indents the text of mixed content (a stray `>` after
+    an element), although the document xacro builds holds the same text as robotdesc's."""
     parser = etree.XMLParser(remove_comments=True, remove_pis=True, remove_blank_text=True,
                              resolve_entities=False, huge_tree=True)
     root = etree.parse(str(path), parser).getroot()
     for element in root.iter():
-        if element.text is not None and not element.text.strip():
-            element.text = None
-        if element.tail is not None and not element.tail.strip():
-            element.tail = None
+        element.text = " ".join(element.text.split()) or None if element.text else None
+        element.tail = " ".join(element.tail.split()) or None if element.tail else None
     return root
 
 
