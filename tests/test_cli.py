@@ -352,3 +352,14 @@ def test_bad_xacro_exits_2_with_a_located_message(project: Path, case: str) -> N
     assert no_traceback(proc)
     assert "pwned" not in (proc.stdout + proc.stderr).splitlines()  # os.system did not run
     assert proc.stderr.startswith("robot.urdf.xacro:"), proc.stderr
+
+
+def test_expand_says_when_the_root_is_no_robot(project: Path) -> None:
+    """A package.xml named by mistake expands as xacro would (exit 0), with a note."""
+    write(project / "package.xml", '<?xml version="1.0"?>\n<!-- x -->\n<package format="3">'
+          "<name>x</name></package>\n")
+    proc = run("expand", "package.xml", cwd=project)
+    assert proc.returncode == 0 and "<package" in proc.stdout
+    assert "the root element is <package>, not <robot>" in proc.stderr
+    write(project / "clean.urdf", CLEAN)
+    assert "root element" not in run("expand", "clean.urdf", cwd=project).stderr

@@ -8,6 +8,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import logging
+import re
 import sys
 from typing import Any
 
@@ -17,6 +18,9 @@ from robotdesc.linting.inputs import description_inputs, expansion_inputs
 from robotdesc.output import check_output, write_output
 
 log = logging.getLogger(__name__)
+
+#: The root element's name after the prolog (BOM, declaration, comments, whitespace).
+_ROOT = re.compile(rb"\A(?:\xef\xbb\xbf)?(?:\s+|<\?.*?\?>|<!--.*?-->)*<([^\s/>]+)", re.S)
 
 
 def register(subparsers: Any, *, common: argparse.ArgumentParser,
@@ -44,6 +48,11 @@ def run_expand(ns: argparse.Namespace) -> int:
     options = dataclasses.replace(single.options, substitutions_in_urdf=True)
     expanded = expand_file(source, single.args, options=options)
     urdf = urdf_text(expanded.xml, expanded.source)
+    root = _ROOT.match(urdf)
+    if root is not None and root.group(1).split(b":")[-1] != b"robot":
+        log.warning("note: %s: the root element is <%s>, not <robot>: expanded as xacro would, "
+                    "but this is no robot description", source,
+                    root.group(1).decode("utf-8", "replace"))
     if not ns.output:
         sys.stdout.buffer.write(urdf)
         sys.stdout.flush()
