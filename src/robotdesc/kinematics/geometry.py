@@ -49,8 +49,7 @@ class CollisionShape:
     def local_points(self) -> np.ndarray:
         """Points whose convex hull bounds the shape, in the geometry frame (k, 3), m."""
         if self.kind == "mesh":
-            assert self.triangles is not None  # a mesh shape always has its triangles
-            return np.unique(self.triangles.reshape(-1, 3), axis=0)
+            return self._mesh_vertices
         if self.kind == "box":
             half = np.asarray(self.size) / 2.0
         elif self.kind == "sphere":
@@ -61,6 +60,15 @@ class CollisionShape:
             half = np.array([self.size[0], self.size[0], self.size[1] / 2.0 + self.size[0]])
         signs = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], float)
         return signs * half
+
+    @functools.cached_property
+    def _mesh_vertices(self) -> np.ndarray:
+        """The mesh's distinct vertices (computed once: a self-collision matrix asks for them
+        at every sampled configuration, and sorting them is the costly part)."""
+        assert self.triangles is not None  # a mesh shape always has its triangles
+        vertices = np.unique(self.triangles.reshape(-1, 3), axis=0)
+        vertices.setflags(write=False)
+        return vertices
 
     def link_points(self) -> np.ndarray:
         """`local_points` in the link frame (k, 3), m."""
