@@ -31,3 +31,15 @@ def test_refuses_to_overwrite_its_input(tmp_path) -> None:
     done = run(str(path), "--samples", "10", "-o", str(path))
     assert done.returncode == 2 and "refusing" in done.stderr
     assert path.read_text() == ARM
+
+
+def test_a_robot_without_moving_joints_gets_its_adjacent_pairs(tmp_path) -> None:
+    """No joint to sample (a fixed-only robot) is a matrix of adjacent pairs, not exit 3."""
+    path = tmp_path / "fixed.urdf"
+    box = '<collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision>'
+    path.write_text(f'<robot name="fixed"><link name="base">{box}</link><link name="b">{box}'
+                    '</link><joint name="j" type="fixed"><parent link="base"/><child link="b"/>'
+                    '</joint></robot>')
+    done = run(str(path), "--samples", "20", "-o", str(tmp_path / "fixed.srdf"))
+    assert done.returncode == 0, done.stderr
+    assert 'link1="b" link2="base" reason="Adjacent"' in (tmp_path / "fixed.srdf").read_text()

@@ -75,7 +75,9 @@ class KinematicModel:
         import numpy as np
 
         pin = import_pinocchio()
-        rows = np.asarray(positions, dtype=float).reshape(-1, len(names))
+        rows = np.asarray(positions, dtype=float)
+        if rows.ndim != 2:  # a flat list of values; a robot without joints has one pose
+            rows = rows.reshape(-1, len(names)) if names else np.zeros((1, 0))
         q = np.tile(np.asarray(pin.neutral(self.model), dtype=float), (len(rows), 1))
         for column, name in enumerate(names):
             if not self.model.existJointName(name):
