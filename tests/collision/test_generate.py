@@ -49,6 +49,15 @@ def test_each_bad_input_is_a_finding_for_its_link(package):
     assert robot.link("good").collisions[0].geometry.size == (1.0, 1.0, 1.0)  # not mutated
 
 
+def test_two_links_with_missing_meshes_each_name_their_own(package):
+    """Two unresolved links used to share one result (their sources hashed alike), so the
+    second was reported with the first one's file."""
+    urdf = write_urdf(package, {"a": "missing_a.stl", "b": "missing_b.stl"})
+    result = robotdesc.generate_collision(robotdesc.load(str(urdf)), "hull", jobs=1)
+    messages = {o.report.link: o.report.findings[0].message for o in result.outcomes}
+    assert "missing_a.stl" in messages["a"] and "missing_b.stl" in messages["b"]
+
+
 def test_a_crashed_worker_is_a_finding_and_the_others_complete(package, monkeypatch):
     from collision import faults
 

@@ -87,7 +87,10 @@ def link_sources(robot: Robot, source: str, meshes: MeshLocator) -> list[LinkSou
 
 def sources_digest(sources: LinkSources, content_digest: Callable[[str], str | None],
                    parameters: Mapping[str, object]) -> str | None:
-    """The hash of a link's sources and the parameters; None when a file cannot be read."""
+    """The hash of a link's sources and the parameters; None when a file cannot be read or
+    a reference does not resolve (such a link fails on its own, never shares a result)."""
+    if sources.problems:
+        return None
     entries: list[dict[str, object]] = []
     for item in sources.items:
         geometry = item.geometry
