@@ -139,3 +139,31 @@ def test_coacd_is_deterministic_and_within_its_limits():
     # the union of hulls covers the input up to CoACD's own tolerance
     assert first.report.percent(first.report.forward_max) < 10
     assert 0.9 < first.report.volume_ratio < 1.5
+
+
+def test_a_broken_decimation_is_not_said_to_have_raised_its_budget(monkeypatch):
+    """When decimation opens a closed mesh the budget stops growing; the over-tolerance
+    warning must not claim it was raised to the input's faces (held-out: a ROBOTIS link)."""
+    from robotdesc.collision import link as link_module
+    from robotdesc.collision.result import Finding
+
+    real_once = link_module._decimate_once
+
+    def broken(vertices, faces, target, options):
+        made = real_once(vertices, faces, target, options)
+        return link_module.replace(made, findings=(
+            Finding("broken-result", "error", "decimation opened the closed input"),))
+
+    monkeypatch.setattr(link_module, "_decimate_once", broken)
+    monkeypatch.setattr(link_module, "_measure", lambda *a, **k: fidelity_at(3.0))
+    vertices, faces = _mesh(UPPERARM)
+    made, _ = link_module._decimate_to_target(vertices, faces, CollisionOptions())
+    [warning] = [f for f in made.findings if f.code == "over-tolerance"]
+    assert "budget was not raised" in warning.message
+    assert "raised to the input" not in warning.message
+
+
+def fidelity_at(percent: float):
+    from robotdesc.collision.metrics import Fidelity
+
+    return Fidelity(0.0, percent / 100, 0.0, percent / 100, 1.0)

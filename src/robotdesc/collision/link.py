@@ -130,8 +130,9 @@ def _decimate_to_target(vertices: np.ndarray, faces: np.ndarray,
                         options: CollisionOptions) -> tuple[_Made, Fidelity]:
     """Decimate to the `ratio` budget; with `adapt` (and no fixed `faces`), raise the
     budget (`_growth`: 2 to 4 times) and measure again while the Hausdorff distance is over
-    the target, up to the input's faces or the engine's faces per mesh. A result still over the target gets an `over-tolerance`
-    warning naming the option to change and its value."""
+    the target, up to the input's faces or the engine's faces per mesh (never past a broken
+    result). A result still over the target gets an `over-tolerance` warning naming the
+    option to change and its value."""
     target = face_budget(len(faces), options.ratio, options.faces, options.min_faces)
     adapt = options.adapt and options.faces is None
     cap = max(target, min(len(faces), options.limits.max_mesh_faces))
@@ -158,7 +159,10 @@ def _decimate_to_target(vertices: np.ndarray, faces: np.ndarray,
     over = (f"symmetric Hausdorff distance {percent:.2f} % of the diagonal at {kept:,} faces "
             f"is over the target {options.target_percent:g} %")
     advice = f"--target {_round_up(percent)}"
-    if adapt:
+    if adapt and any(f.severity == "error" for f in made.findings):
+        message = (f"{over}; the budget was not raised, as the result is broken (the error "
+                   "above): use --method coacd, or --method hull")
+    elif adapt:
         why = (f"the {options.limits.name} limit of {options.limits.max_mesh_faces:,} faces "
                "per mesh" if len(faces) > options.limits.max_mesh_faces
                else "the input's faces")
