@@ -167,3 +167,17 @@ def fidelity_at(percent: float):
     from robotdesc.collision.metrics import Fidelity
 
     return Fidelity(0.0, percent / 100, 0.0, percent / 100, 1.0)
+
+
+def test_an_input_that_is_no_closed_surface_says_what_vol_is_against():
+    """UR's upper arm mesh has non-manifold edges: its volume is unknown, VOL is against its
+    convex hull, and the report says so instead of showing 0.54 as if volume were lost."""
+    from collision.conftest import box_soup
+
+    soup = box_soup()
+    soup = np.concatenate([soup, soup[:1], soup[:1]])  # one face three times: non-manifold
+    outcome = run_link(LinkTask("arm", soup, CollisionOptions(method="hull")))
+    codes = [f.code for f in outcome.report.findings]
+    assert "open-input" in codes and outcome.report.status == "warning"
+    closed = run_link(LinkTask("arm", box_soup(), CollisionOptions(method="hull")))
+    assert "open-input" not in [f.code for f in closed.report.findings]

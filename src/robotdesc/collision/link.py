@@ -26,6 +26,7 @@ from robotdesc.collision.result import (
 )
 from robotdesc.collision.tessellate import primitive_mesh
 from robotdesc.errors import CollisionOptionError, NoVolumeError
+from robotdesc.mesh.records import MassMethod
 
 #: decimate with `adapt`: a budget whose result misses the target is raised by at least
 #: this factor, and at most BUDGET_GROWTH_MAX (when far over).
@@ -88,6 +89,9 @@ def run_link(task: LinkTask) -> LinkOutcome:
             f"{error.name or error}: reinstall robotdesc (its collision dependencies are missing)"))
     surface = [_as_mesh(p) for p in made.parts]
     findings = list(made.findings)
+    if summary.method is MassMethod.CONVEX_HULL:  # VOL cannot be against the input itself
+        findings.append(Finding("open-input", "warning", "the input is no closed surface "
+                                "(its volume is unknown): VOL is against its convex hull"))
     errors = any(f.severity == "error" for f in findings)
     status = "failed" if errors else "warning" if findings else "ok"
     report = replace(
