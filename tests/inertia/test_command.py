@@ -57,3 +57,30 @@ def test_suggest_and_write(robot_file: Path, tmp_path: Path, capsys) -> None:
     assert main(["inertia", str(robot_file), "--write", str(patch)]) == 0
     assert '+      <inertia ixx="0.0166667"' in patch.read_text()
     assert robot_file.read_text() == URDF
+
+
+STUB = """<?xml version="1.0"?>
+<robot name="hip">
+  <link name="base"/>
+  <link name="hip_yaw_link">
+    <inertial><origin xyz="-0.06 0 0.008"/><mass value="2.965"/>
+      <inertia ixx="0.0036" ixy="0" ixz="0" iyy="0.0050" iyz="0" izz="0.0058"/></inertial>
+    <visual><origin xyz="-0.06 0 0"/><geometry><box size="0.16 0.08 0.08"/></geometry></visual>
+    <collision><origin xyz="0.02 0 0" rpy="0 1.5707963 0"/>
+      <geometry><cylinder radius="0.01" length="0.02"/></geometry></collision>
+  </link>
+  <joint name="hip_yaw" type="revolute"><parent link="base"/><child link="hip_yaw_link"/>
+    <axis xyz="0 0 1"/><limit lower="-0.4" upper="0.4" effort="200" velocity="23"/></joint>
+</robot>
+"""
+
+
+def test_no_suggestion_from_a_stand_in_denser_than_any_material(tmp_path: Path, capsys) -> None:
+    """A 2 cm collision stub under a 3 kg hip would hold it at 4.7e5 kg/m^3: the stub is not
+    the body, and a tensor from it would be 25x too small (held-out)."""
+    path = tmp_path / "hip.urdf"
+    path.write_text(STUB)
+    assert main(["inertia", str(path), "--suggest"]) == 0
+    captured = capsys.readouterr()
+    assert "<inertia" not in captured.out
+    assert "denser than any material" in captured.err and "--source visual" in captured.err

@@ -73,6 +73,8 @@ def run_inertia(ns: argparse.Namespace) -> int:
     rows = inertia_table(robot, meshes)
     suggestions = _suggestions(robot, meshes, rows, everything=ns.all) \
         if ns.suggest or ns.write else []
+    if ns.suggest or ns.write:
+        _say_stand_ins(rows, {s.link for s in suggestions})
     if ns.format == "json":
         document = {"target": source, "source": settings.inertia_source,
                     "links": [row.to_json() for row in rows]}
@@ -101,6 +103,19 @@ def _suggestions(robot: Robot, meshes: MeshAccess, rows: Sequence[InertiaRow],
     from robotdesc.inertia.suggest import select_suggestions
 
     return select_suggestions(robot, meshes, rows, everything=everything)
+
+
+def _say_stand_ins(rows: Sequence[InertiaRow], suggested: set[str]) -> None:
+    """Name the links left without a suggestion because their geometry cannot be the body."""
+    from robotdesc.inertia.suggest import MAX_DENSITY
+
+    for row in rows:
+        if row.link not in suggested and row.density is not None and row.density > MAX_DENSITY:
+            other = "visual" if row.source == "collision" else "collision"
+            sys.stderr.write(
+                f"robotdesc: link '{row.link}': no suggestion: its {row.source} geometry would "
+                f"hold the declared mass at {row.density:.3g} kg/m^3, denser than any "
+                f"material (a stand-in, not the body); try --source {other}\n")
 
 
 def _render_suggestions(suggestions: Sequence[Suggestion]) -> str:

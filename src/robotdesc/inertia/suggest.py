@@ -28,6 +28,9 @@ ShapeT = TypeVar("ShapeT", Visual, Collision)
 
 #: The density assumed when a link declares no usable mass (kg/m^3): a guess, said so.
 FALLBACK_DENSITY = 1000.0
+#: Denser than any material (osmium: 22,590 kg/m^3): geometry that would hold the declared
+#: mass at more than this is a stand-in, not the body, and no tensor is suggested from it.
+MAX_DENSITY = 25_000.0
 
 
 @dataclass(frozen=True)
@@ -143,13 +146,19 @@ def _scaled_shape(shape: ShapeT) -> ShapeT:
 def suggest_for_link(robot: Robot, meshes: MeshAccess, link: Link,
                      fallback_density: float = FALLBACK_DENSITY) -> Suggestion | None:
     """The suggested `<inertial>` of one link from its measured geometry, with meshes in
-    millimetres scaled first; None when the geometry cannot be trusted."""
+    millimetres scaled first; None when the geometry cannot be trusted, or cannot be the
+    body: the declared mass in it would be denser than any material (`MAX_DENSITY`)."""
     geometry = meshes.link_geometry(link)
     if not geometry.trusted:
         return None
     geometry, note = corrected_geometry(robot, meshes, link, geometry)
     if geometry.properties is None:  # trusted geometry has properties
         return None
+    declared = link.inertial.mass if link.inertial is not None else None
+    volume = geometry.properties.volume
+    if declared is not None and declared > 0 and volume > 0 \
+            and declared / volume > MAX_DENSITY:
+        return None  # a stand-in (a 2 cm stub under a 3 kg link) is not the body
     return suggest_inertial(link, geometry.properties, fallback_density, note)
 
 
