@@ -113,3 +113,16 @@ def test_a_notebook_shows_results_as_the_reports_tables() -> None:
         assert data["text/html"] == notebook.html_of(result)
     finally:
         InteractiveShell.clear_instance()
+
+
+def test_the_api_refuses_what_the_command_line_refuses(urdf: Path) -> None:
+    """An unknown selector or inertia source is an error, as on the command line, not a
+    silently empty result (held-out)."""
+    from robotdesc.errors import UsageError
+
+    with pytest.raises(UsageError, match="no rule matches 'ZZZ9'"):
+        robotdesc.lint(str(urdf), select=["ZZZ9"])
+    with pytest.raises(UsageError, match="ignore"):
+        robotdesc.lint(str(urdf), ignore=["NOPE"])
+    with pytest.raises(UsageError, match="source must be"):
+        robotdesc.mesh_inertia(str(urdf), source="foo")  # type: ignore[arg-type]
