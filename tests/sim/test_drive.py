@@ -92,3 +92,19 @@ def test_rover_drives_as_commanded_in_dart(tmp_path, capsys) -> None:
     out = capsys.readouterr().out
     assert "PASS  straight" in out, out
     assert code in (0, 1)
+
+
+def test_wheels_without_an_effort_limit_drive_as_commanded(tmp_path, capsys) -> None:
+    """Continuous wheel joints usually carry no `<limit>` (TurtleBot 3): the servo must still
+    track, not rattle (a 1 kg two-wheeler spun at 16.7 rad/s when told 2.5)."""
+    pytest.importorskip("mujoco")
+    from pathlib import Path
+
+    path = Path(__file__).with_name("two_wheeler_no_effort.urdf")
+    code = main(["sim", str(path), "--drive", "--left-wheels", "wheel_left_joint",
+                 "--right-wheels", "wheel_right_joint", "--no-rtf", "--format", "json"])
+    report = json.loads(capsys.readouterr().out)["drive"]
+    by_name = {r["command"]: r for r in report["results"]}
+    assert by_name["straight"]["achieved_linear"] == pytest.approx(0.2, rel=0.1)
+    assert by_name["spin"]["achieved_angular"] == pytest.approx(2.5, rel=0.3)
+    assert code == 0 and report["passed"]

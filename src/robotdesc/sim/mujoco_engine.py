@@ -29,6 +29,10 @@ from robotdesc.sim.scene import Scene, SceneOptions
 
 #: Speed error (rad/s) at which a drive servo pushes the wheel's share of the robot's weight.
 DRIVE_SLIP = 0.02
+#: The same for a joint without an effort limit, whose servo nothing else bounds: 0.02 made
+#: a light wheel's servo stiff enough to rattle (a 1 kg two-wheeler spun at 24 rad/s when
+#: told 2.5); at 1 rad/s the servo still carries the weight share and tracks on flat ground.
+UNLIMITED_DRIVE_SLIP = 1.0
 
 
 def build_scene(robot: Robot, meshes: MeshAssets, options: SceneOptions,
@@ -129,10 +133,11 @@ class MujocoScene(EngineScene):
                 raise KeyError(f"joint '{name}' cannot be driven (not a simulated, "
                                "non-mimic joint)")
             effort = by_name[name].effort
-            gain = weight * self._wheel_radius(int(model.actuator_trnid[actuator, 0])) \
-                / DRIVE_SLIP
+            carry = weight * self._wheel_radius(int(model.actuator_trnid[actuator, 0]))
             if effort is not None and effort > 0 and np.isfinite(effort):
-                gain = min(gain, effort)
+                gain = min(carry / DRIVE_SLIP, effort)
+            else:  # no effort limit (continuous joints often have none): a gentler servo
+                gain = carry / UNLIMITED_DRIVE_SLIP
             model.actuator_gainprm[actuator, 0] = gain
             model.actuator_biasprm[actuator, :3] = (0.0, 0.0, -gain)
             self.data.ctrl[actuator] = velocity
