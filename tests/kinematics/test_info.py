@@ -47,3 +47,14 @@ def test_info_command_prints_json(tmp_path) -> None:
     bad = subprocess.run([sys.executable, "-m", "robotdesc", "info", str(path), "--q", "elbow"],
                          check=False, capture_output=True, text=True, cwd=REPO, timeout=120)
     assert bad.returncode == 2 and "JOINT=VALUE" in bad.stderr
+
+
+@pytest.mark.parametrize("value", ["inf", "nan", "-inf"])
+def test_info_refuses_a_position_that_is_no_finite_number(tmp_path, value) -> None:
+    """`--q elbow=nan` printed (nan, nan, nan) and bare NaN in JSON, exit 0 (held-out)."""
+    path = tmp_path / "arm.urdf"
+    path.write_text(ARM)
+    done = subprocess.run([sys.executable, "-m", "robotdesc", "info", "--q", f"elbow={value}",
+                           str(path), "--format", "json"], check=False, capture_output=True,
+                          text=True, cwd=REPO, timeout=120)
+    assert done.returncode == 2 and "JOINT=VALUE" in done.stderr and not done.stdout

@@ -13,12 +13,12 @@ from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
 from robotdesc.commands.inputs import single_input
-from robotdesc.errors import UsageError
 from robotdesc.expansion import expand_file
 from robotdesc.kinematics.optional import import_pinocchio
 from robotdesc.linting.inputs import run_inputs
 from robotdesc.mesh.locate import MeshLocator
 from robotdesc.progress import progress_for
+from robotdesc.view.forward import parse_assignments
 
 if TYPE_CHECKING:
     from robotdesc.kinematics.info import RobotInfo
@@ -37,9 +37,9 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser], *,
                     "(install: pip install '.[kinematics]').")
     parser.add_argument("inputs", nargs="+", metavar="FILE | name:=value",
                         help="the URDF/xacro file, then xacro arguments")
-    parser.add_argument("--q", nargs="+", default=[], metavar="JOINT=VALUE",
-                        help="joint positions (rad or m) for the centre of mass at a "
-                             "configuration")
+    parser.add_argument("--q", action="append", default=[], metavar="JOINT=VALUE",
+                        help="a joint position (rad or m) for the centre of mass at a "
+                             "configuration; repeatable")
     parser.add_argument("--format", choices=("text", "json"), default="text",
                         help="output format (default: text)")
     parser.set_defaults(handler=run_info)
@@ -63,26 +63,12 @@ def load_robot(ns: argparse.Namespace, verb: str) -> tuple[Robot, MeshPath, str,
     return robot, meshes.path, single.source, inputs
 
 
-def parse_positions(items: list[str]) -> dict[str, float]:
-    """`name=value` pairs (rad or m) into a dict."""
-    positions = {}
-    for item in items:
-        name, sep, value = item.partition("=")
-        try:
-            positions[name.strip()] = float(value)
-        except ValueError:
-            sep = ""
-        if not sep or not name.strip():
-            raise UsageError(f"--q: expected JOINT=VALUE, got '{item}'")
-    return positions
-
-
 def run_info(ns: argparse.Namespace) -> int:
     """The handler: expand, build with Pinocchio, print; exit 0 (2 on unusable input)."""
     from robotdesc.kinematics.info import robot_info
 
     import_pinocchio("robotdesc info")
-    positions = parse_positions(ns.q)
+    positions = parse_assignments(ns.q)
     with progress_for(ns, "info") as bar:
         bar.update(0, detail="expanding and parsing")
         robot, mesh_path, _, _ = load_robot(ns, "info")
