@@ -84,3 +84,31 @@ def test_no_suggestion_from_a_stand_in_denser_than_any_material(tmp_path: Path, 
     captured = capsys.readouterr()
     assert "<inertia" not in captured.out
     assert "denser than any material" in captured.err and "--source visual" in captured.err
+
+
+ROOT = """<?xml version="1.0"?>
+<robot name="mobile">
+  <link name="base_footprint"><visual><geometry><box size="0.001 0.001 0.001"/></geometry></visual></link>
+  <link name="base_link">
+    <inertial><origin xyz="0 0 0.1"/><mass value="20"/>
+      <inertia ixx="0.25" ixy="0" ixz="0" iyy="0.25" iyz="0" izz="0.33"/></inertial>
+    <collision><origin xyz="0 0 0.1"/><geometry><box size="0.4 0.4 0.2"/></geometry></collision>
+  </link>
+  <joint name="footprint_joint" type="fixed"><parent link="base_footprint"/><child link="base_link"/></joint>
+  <link name="camera"><visual><geometry><box size="0.02 0.08 0.02"/></geometry></visual></link>
+  <joint name="camera_joint" type="fixed"><parent link="base_link"/><child link="camera"/></joint>
+  <link name="wheel"><collision><geometry><cylinder radius="0.05" length="0.02"/></geometry></collision></link>
+  <joint name="wheel_joint" type="continuous"><parent link="base_link"/><child link="wheel"/></joint>
+</robot>
+"""
+
+
+def test_a_massless_root_and_frames_are_left_massless(tmp_path: Path, capsys) -> None:
+    """go1's `base` and PR2's `base_footprint` were offered a 1e-6 kg inertial; the docs say
+    a massless root is the fix. A moving link without one still gets its block."""
+    path = tmp_path / "mobile.urdf"
+    path.write_text(ROOT)
+    assert main(["inertia", str(path), "--suggest"]) == 0
+    out = capsys.readouterr().out
+    assert "link 'wheel'" in out
+    assert "base_footprint" not in out and "link 'camera'" not in out

@@ -18,6 +18,7 @@ from robotdesc.mesh.context import LinkGeometry, MeshContext
 from robotdesc.mesh.properties import MassProperties
 from robotdesc.mesh.scale_check import looks_like_millimetres, robot_size
 from robotdesc.model.elements import Collision, Link, MeshRef, Robot, Visual
+from robotdesc.model.tree import parent_joint_of
 from robotdesc.source import Span
 
 #: The scale that turns a mesh exported in millimetres into metres.
@@ -199,17 +200,23 @@ def select_suggestions(robot: Robot, meshes: MeshAccess, rows: Sequence[InertiaR
     A link is chosen when its geometry can be trusted and it has no declared inertia, or its
     declared tensor differs from the geometry's beyond `tolerance` in its principal moments
     or as a whole (a rotated tensor: right moments, wrong axes); every measured link with
-    `everything`. Meshes diagnosed as millimetres are scaled first (see `suggest_for_link`).
+    `everything`. A link without `<inertial>` that is a root (the massless root the
+    consumers expect, KDL warns about a root's inertia) or hangs on a fixed joint (a frame,
+    lumped into its parent) is left as it is. Meshes diagnosed as millimetres are scaled first (see `suggest_for_link`).
 
     Args:
         rows: the inertia table (`robotdesc.inertia.table.inertia_table`), computed when None.
     """
     table = rows if rows is not None else inertia_table(robot, meshes, tolerance)
     errors = {row.link: row.error for row in table}
+    parents = parent_joint_of(robot)
     found: list[Suggestion] = []
     for link in robot.links:
         if link.name not in errors:
             continue
+        parent = parents.get(link.name)
+        if link.inertial is None and (parent is None or parent.type == "fixed"):
+            continue  # a massless root or a frame: no mass is what it should have
         error = errors[link.name]
         if not everything and link.inertial is not None and error is not None \
                 and error <= tolerance:
