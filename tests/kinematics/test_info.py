@@ -58,3 +58,14 @@ def test_info_refuses_a_position_that_is_no_finite_number(tmp_path, value) -> No
                            str(path), "--format", "json"], check=False, capture_output=True,
                           text=True, cwd=REPO, timeout=120)
     assert done.returncode == 2 and "JOINT=VALUE" in done.stderr and not done.stdout
+
+
+def test_collision_meshes_that_do_not_resolve_are_named_not_hidden() -> None:
+    """Both links had <collision> meshes that do not resolve, and info said only "no
+    collision geometry" (held-out: solo12 with its package misnamed)."""
+    text = ('<robot name="two"><link name="a"><collision><geometry><mesh filename='
+            '"package://gone/a.stl"/></geometry></collision></link></robot>')
+    info = robot_info(robot(text))
+    assert info.bounds is None
+    assert len(info.left_out) == 1 and info.left_out[0].startswith("link 'a': ")
+    assert info.to_dict()["left_out"] == list(info.left_out)

@@ -95,7 +95,10 @@ def render_info(info: RobotInfo) -> str:
             ("centre of mass at zero", vec(info.com_zero))]
     if info.com_at is not None:
         rows.append(("centre of mass at --q", vec(info.com_at)))
-    rows.append(("bounding box (collision)", f"{vec(info.bounds[0])} .. {vec(info.bounds[1])}"
-                 if info.bounds else "no collision geometry"))
+    box = f"{vec(info.bounds[0])} .. {vec(info.bounds[1])}" if info.bounds else \
+        "no collision geometry" if not info.left_out else "no readable collision geometry"
+    if info.left_out:
+        box += (f" ({len(info.left_out)} <collision> left out; first: {info.left_out[0]})")
+    rows.append(("bounding box (collision)", box))
     width = max(len(label) for label, _ in rows)
     return "".join(f"{label.ljust(width)}  {value}\n" for label, value in rows)

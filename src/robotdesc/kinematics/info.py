@@ -12,7 +12,7 @@ import numpy as np
 from robotdesc.errors import UsageError
 from robotdesc.kinematics.build import KinematicModel, build_model
 from robotdesc.kinematics.configuration import follow_mimics, independent_joints
-from robotdesc.kinematics.geometry import collision_shapes
+from robotdesc.kinematics.geometry import CollisionShape, collision_shapes
 from robotdesc.kinematics.urdf_text import MeshPath
 from robotdesc.model.elements import Robot
 
@@ -45,6 +45,8 @@ class RobotInfo:
         configuration: the joint positions asked for (rad or m), mimic joints completed.
         bounds: (lower, upper) corner of the collision geometry in the root frame at the zero
             configuration (m), or None when the robot has no readable collision geometry.
+        left_out: the `<collision>` elements the bounding box leaves out, with the reason
+            (a mesh that does not resolve or cannot be read).
     """
 
     name: str
@@ -57,6 +59,7 @@ class RobotInfo:
     com_at: Vec3 | None = None
     configuration: tuple[tuple[str, float], ...] = ()
     bounds: tuple[Vec3, Vec3] | None = None
+    left_out: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, object]:
         """A JSON-ready dict (lists for tuples)."""
@@ -66,7 +69,8 @@ class RobotInfo:
                 "com_zero": list(self.com_zero),
                 "com_at": list(self.com_at) if self.com_at is not None else None,
                 "configuration": dict(self.configuration),
-                "bounds": [list(self.bounds[0]), list(self.bounds[1])] if self.bounds else None}
+                "bounds": [list(self.bounds[0]), list(self.bounds[1])] if self.bounds else None,
+                "left_out": list(self.left_out)}
 
 
 def robot_info(robot: Robot, mesh_path: MeshPath = lambda mesh: None,
@@ -96,6 +100,7 @@ def robot_info(robot: Robot, mesh_path: MeshPath = lambda mesh: None,
     zero = follow_mimics(robot, {name: 0.0 for name in settable})
     com_zero = _com(kinematics, zero)
     chosen = follow_mimics(robot, {**zero, **dict(positions)}) if positions else None
+    shapes, problems = collision_shapes(robot, mesh_path)
     return RobotInfo(
         name=robot.name, links=len(robot.links),
         joints_by_type=tuple(sorted(Counter(j.type for j in robot.joints).items())),
@@ -103,7 +108,8 @@ def robot_info(robot: Robot, mesh_path: MeshPath = lambda mesh: None,
         mimic=mimic, total_mass=float(sum(i.mass for i in kinematics.model.inertias)),
         com_zero=com_zero, com_at=_com(kinematics, chosen) if chosen else None,
         configuration=tuple(sorted(chosen.items())) if chosen else (),
-        bounds=_bounds(kinematics, robot, mesh_path, zero))
+        bounds=_bounds(kinematics, shapes, zero),
+        left_out=tuple(f"link '{p.link}': {p.message}" for p in problems))
 
 
 def _com(kinematics: KinematicModel, positions: Mapping[str, float]) -> Vec3:
@@ -122,11 +128,10 @@ def _com(kinematics: KinematicModel, positions: Mapping[str, float]) -> Vec3:
     return (x, y, z)
 
 
-def _bounds(kinematics: KinematicModel, robot: Robot, mesh_path: MeshPath,
+def _bounds(kinematics: KinematicModel, shapes: list[CollisionShape],
             positions: Mapping[str, float]) -> tuple[Vec3, Vec3] | None:
     import pinocchio as pin
 
-    shapes, _ = collision_shapes(robot, mesh_path)
     if not shapes:
         return None
     model = kinematics.model
