@@ -126,3 +126,10 @@ def test_the_api_refuses_what_the_command_line_refuses(urdf: Path) -> None:
         robotdesc.lint(str(urdf), ignore=["NOPE"])
     with pytest.raises(UsageError, match="source must be"):
         robotdesc.mesh_inertia(str(urdf), source="foo")  # type: ignore[arg-type]
+
+
+def test_an_argument_that_is_no_string_is_a_usage_error(urdf: Path) -> None:
+    from robotdesc.errors import UsageError
+
+    with pytest.raises(UsageError, match="'hand' must be a string, not bool .*'true'"):
+        robotdesc.load(str(urdf), args={"hand": True})  # type: ignore[dict-item]

@@ -129,10 +129,17 @@ def expand_file(path: str | Path, args: Mapping[str, str] | None = None, *,
         The expanded document with provenance (see `Expanded`).
 
     Raises:
-        InputError: the file cannot be expanded; its subclasses say why and where.
+        InputError: the file cannot be expanded; its subclasses say why and where
+            (UsageError: an argument that is not text).
     """
     options = options or ExpandOptions()
     args = dict(args or {})
+    for name, value in args.items():
+        if not isinstance(name, str) or not isinstance(value, str):
+            text = str(value).lower() if isinstance(value, bool) else str(value)
+            raise errors.UsageError(f"xacro argument {name!r} must be a string, not "
+                                    f"{type(value).__name__} (xacro arguments are text: "
+                                    f"{text!r})")
     path = Path(path).absolute()
     data = _read_checked(path)
     if not is_xacro(path, data):
