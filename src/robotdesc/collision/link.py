@@ -134,9 +134,9 @@ def _decimate_to_target(vertices: np.ndarray, faces: np.ndarray,
                         options: CollisionOptions) -> tuple[_Made, Fidelity]:
     """Decimate to the `ratio` budget; with `adapt` (and no fixed `faces`), raise the
     budget (`_growth`: 2 to 4 times) and measure again while the Hausdorff distance is over
-    the target, up to the input's faces or the engine's faces per mesh (never past a broken
-    result). A result still over the target gets an `over-tolerance` warning naming the
-    option to change and its value."""
+    the target or the result is broken (it opened the closed input: doubled), up to the
+    input's faces or the engine's faces per mesh. A result still over the target gets an
+    `over-tolerance` warning naming the option to change and its value."""
     target = face_budget(len(faces), options.ratio, options.faces, options.min_faces)
     adapt = options.adapt and options.faces is None
     cap = max(target, min(len(faces), options.limits.max_mesh_faces))
@@ -145,11 +145,13 @@ def _decimate_to_target(vertices: np.ndarray, faces: np.ndarray,
     while True:
         made = _decimate_once(vertices, faces, budgets[-1], options)
         measured = _measure(vertices, faces, made.parts, options, index)
-        if (not adapt or measured.hausdorff_percent <= options.target_percent
-                or budgets[-1] >= cap or any(f.severity == "error" for f in made.findings)):
+        broken = any(f.severity == "error" for f in made.findings)
+        if not adapt or budgets[-1] >= cap or (
+                not broken and measured.hausdorff_percent <= options.target_percent):
             break
-        budgets.append(min(cap, int(budgets[-1] * _growth(measured.hausdorff_percent,
-                                                          options.target_percent))))
+        # over the target, or broken (an opened surface): a larger budget keeps more of it
+        growth = 2.0 if broken else _growth(measured.hausdorff_percent, options.target_percent)
+        budgets.append(min(cap, int(budgets[-1] * growth)))
     percent = measured.hausdorff_percent
     decimated = made.parts[0]
     assert isinstance(decimated, MeshPart)  # `_decimate_once` makes one mesh
@@ -164,8 +166,8 @@ def _decimate_to_target(vertices: np.ndarray, faces: np.ndarray,
             f"is over the target {options.target_percent:g} %")
     advice = f"--target {_round_up(percent)}"
     if adapt and any(f.severity == "error" for f in made.findings):
-        message = (f"{over}; the budget was not raised, as the result is broken (the error "
-                   "above): use --method coacd, or --method hull")
+        message = (f"{over}; the result stayed broken (the error above) with the budget "
+                   f"raised to {budgets[-1]:,} faces: use --method coacd, or --method hull")
     elif adapt:
         why = (f"the {options.limits.name} limit of {options.limits.max_mesh_faces:,} faces "
                "per mesh" if len(faces) > options.limits.max_mesh_faces
