@@ -12,7 +12,7 @@ except ModuleNotFoundError:  # Python 3.10
     import tomli as tomllib
 
 import robotdesc
-from robotdesc.errors import InputError
+from robotdesc.errors import InputError, UsageError
 
 REPO = Path(__file__).resolve().parents[1]
 URDF = """<robot name="tiny">
@@ -118,8 +118,6 @@ def test_a_notebook_shows_results_as_the_reports_tables() -> None:
 def test_the_api_refuses_what_the_command_line_refuses(urdf: Path) -> None:
     """An unknown selector or inertia source is an error, as on the command line, not a
     silently empty result (held-out)."""
-    from robotdesc.errors import UsageError
-
     with pytest.raises(UsageError, match="no rule matches 'ZZZ9'"):
         robotdesc.lint(str(urdf), select=["ZZZ9"])
     with pytest.raises(UsageError, match="ignore"):
@@ -129,7 +127,5 @@ def test_the_api_refuses_what_the_command_line_refuses(urdf: Path) -> None:
 
 
 def test_an_argument_that_is_no_string_is_a_usage_error(urdf: Path) -> None:
-    from robotdesc.errors import UsageError
-
     with pytest.raises(UsageError, match="'hand' must be a string, not bool .*'true'"):
         robotdesc.load(str(urdf), args={"hand": True})  # type: ignore[dict-item]

@@ -166,13 +166,12 @@ def mesh_inertia(path: str, args: Mapping[str, str] | None = None, *,
         UsageError: `source` is neither "collision" nor "visual".
     """
     from robotdesc.config import discover_config
+    from robotdesc.errors import UsageError
     from robotdesc.inertia.table import InertiaTable, inertia_table
     from robotdesc.mesh.context import MeshContext
     from robotdesc.model.parse import parse_urdf
 
     if source not in (None, "collision", "visual"):
-        from robotdesc.errors import UsageError
-
         raise UsageError(f"source must be 'collision' or 'visual', not {source!r}")
     config = discover_config(path)
     expanded = expand(path, {**dict(config.args), **dict(args or {})},
@@ -209,16 +208,13 @@ def lint(path: str, args: Mapping[str, str] | None = None, *,
         UsageError: a selector matches no rule (as `--select`/`--ignore` on the command line).
     """
     from robotdesc.config import load_config
-    from robotdesc.errors import UsageError
     from robotdesc.expansion import ExpandOptions
     from robotdesc.linting.driver import lint_file
-    from robotdesc.linting.select import unknown_selectors
+    from robotdesc.linting.select import check_selectors
     from robotdesc.rules.catalog import all_rules
 
-    for name, chosen in (("select", select or ()), ("ignore", ignore)):
-        unknown = unknown_selectors(list(chosen), all_rules())
-        if unknown:
-            raise UsageError(f"{name}: no rule matches '{unknown[0]}' (see `robotdesc rules`)")
+    check_selectors(select or (), all_rules(), "select")
+    check_selectors(ignore, all_rules(), "ignore")
     if isinstance(config, str):
         config = load_config(config)
     options = ExpandOptions(package_paths=tuple(package_paths), trusted=trusted)

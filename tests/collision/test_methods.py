@@ -13,13 +13,16 @@ from collision.conftest import (
     UPPERARM,
     Z1_LINK03,
     Z1_LINK05,
+    box_soup,
     real_mesh,
 )
+from robotdesc.collision import link as link_module
 from robotdesc.collision.decimate import BUDGET_SLACK, decimate, face_budget, is_closed
 from robotdesc.collision.hull import contains, convex_hull
 from robotdesc.collision.link import LinkTask, run_link
-from robotdesc.collision.metrics import fidelity
+from robotdesc.collision.metrics import Fidelity, fidelity
 from robotdesc.collision.options import CollisionOptions
+from robotdesc.collision.result import Finding
 from robotdesc.collision.tessellate import primitive_mesh
 from robotdesc.errors import CollisionOptionError, NoVolumeError
 from robotdesc.mesh.health import merge_vertices
@@ -144,9 +147,6 @@ def test_coacd_is_deterministic_and_within_its_limits():
 def test_a_broken_decimation_raises_its_budget_and_says_so(monkeypatch):
     """When decimation opens a closed mesh, a larger budget is tried (held-out: an Allegro
     link closed again at 512 faces of 1,400); one broken up to the cap says so."""
-    from robotdesc.collision import link as link_module
-    from robotdesc.collision.result import Finding
-
     real_once = link_module._decimate_once
 
     def broken(vertices, faces, target, options):
@@ -165,17 +165,13 @@ def test_a_broken_decimation_raises_its_budget_and_says_so(monkeypatch):
     assert "budget raised" in made.detail
 
 
-def fidelity_at(percent: float):
-    from robotdesc.collision.metrics import Fidelity
-
+def fidelity_at(percent: float) -> Fidelity:
     return Fidelity(0.0, percent / 100, 0.0, percent / 100, 1.0)
 
 
 def test_an_input_that_is_no_closed_surface_says_what_vol_is_against():
     """UR's upper arm mesh has non-manifold edges: its volume is unknown, VOL is against its
     convex hull, and the report says so instead of showing 0.54 as if volume were lost."""
-    from collision.conftest import box_soup
-
     soup = box_soup()
     soup = np.concatenate([soup, soup[:1], soup[:1]])  # one face three times: non-manifold
     outcome = run_link(LinkTask("arm", soup, CollisionOptions(method="hull")))

@@ -107,10 +107,10 @@ def _suggestions(robot: Robot, meshes: MeshAccess, rows: Sequence[InertiaRow],
 
 def _say_stand_ins(rows: Sequence[InertiaRow], suggested: set[str]) -> None:
     """Name the links left without a suggestion because their geometry cannot be the body."""
-    from robotdesc.inertia.suggest import MAX_DENSITY
+    from robotdesc.inertia.suggest import denser_than_any_material
 
     for row in rows:
-        if row.link not in suggested and row.density is not None and row.density > MAX_DENSITY:
+        if row.link not in suggested and denser_than_any_material(row.density):
             other = "visual" if row.source == "collision" else "collision"
             sys.stderr.write(
                 f"robotdesc: link '{row.link}': no suggestion: its {row.source} geometry would "

@@ -27,7 +27,7 @@ from robotdesc.errors import InputError, UsageError
 from robotdesc.linting.baseline import apply_baseline, read_baseline, render_baseline
 from robotdesc.linting.inputs import run_inputs
 from robotdesc.linting.result import LintFailure, LintResult
-from robotdesc.linting.select import unknown_selectors
+from robotdesc.linting.select import check_selectors
 from robotdesc.linting.targets import Discovery, LintTarget, discover_targets, target_name
 from robotdesc.output import RunInputs, check_output, write_output
 from robotdesc.progress import progress_for
@@ -145,9 +145,7 @@ def selectors(values: Sequence[str], flag: str) -> list[str]:
 
     found = [part.strip() for value in values for part in value.split(",") if part.strip()]
     if found:
-        unknown = unknown_selectors(found, all_rules())
-        if unknown:
-            raise UsageError(f"{flag}: no rule matches '{unknown[0]}' (see `robotdesc rules`)")
+        check_selectors(found, all_rules(), flag)
     return found
 
 

@@ -209,7 +209,7 @@ def run_job(job: _Job, guard: sandbox.Guard) -> dict[str, object]:
     for folder in job["guard_roots"]:
         guard.allow_root(folder)
     state = hooks.ExpansionState(max_macro_depth=job["max_macro_depth"])
-    passed = hooks.RecordingArgs({})
+    passed = hooks.RecordingArgs(dict(job["args"]))
 
     def find_package(name: str) -> str:
         found = resolver.find(name)
@@ -231,7 +231,6 @@ def run_job(job: _Job, guard: sandbox.Guard) -> dict[str, object]:
     try:
         xacro.init_stacks(top)
         doc = xacro.parse(None, top)
-        passed = hooks.RecordingArgs(dict(job["args"]))
         xacro.process_doc(doc, mappings=passed)
         text = doc.documentElement.toxml()
     except hooks.DoctypeRefused as exc:

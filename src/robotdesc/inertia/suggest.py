@@ -34,6 +34,12 @@ FALLBACK_DENSITY = 1000.0
 MAX_DENSITY = 25_000.0
 
 
+def denser_than_any_material(density: float | None) -> bool:
+    """Whether a declared mass in its geometry (kg/m^3, None: unknown) would be denser than
+    any material: the geometry is a stand-in, not the body."""
+    return density is not None and density > MAX_DENSITY
+
+
 @dataclass(frozen=True)
 class Suggestion:
     """A corrected `<inertial>` for one link.
@@ -158,7 +164,7 @@ def suggest_for_link(robot: Robot, meshes: MeshAccess, link: Link,
     declared = link.inertial.mass if link.inertial is not None else None
     volume = geometry.properties.volume
     if declared is not None and declared > 0 and volume > 0 \
-            and declared / volume > MAX_DENSITY:
+            and denser_than_any_material(declared / volume):
         return None  # a stand-in (a 2 cm stub under a 3 kg link) is not the body
     return suggest_inertial(link, geometry.properties, fallback_density, note)
 
@@ -202,7 +208,8 @@ def select_suggestions(robot: Robot, meshes: MeshAccess, rows: Sequence[InertiaR
     or as a whole (a rotated tensor: right moments, wrong axes); every measured link with
     `everything`. A link without `<inertial>` that is a root (the massless root the
     consumers expect, KDL warns about a root's inertia) or hangs on a fixed joint (a frame,
-    lumped into its parent) is left as it is. Meshes diagnosed as millimetres are scaled first (see `suggest_for_link`).
+    lumped into its parent) is left as it is. Meshes diagnosed as millimetres are scaled
+    first (see `suggest_for_link`).
 
     Args:
         rows: the inertia table (`robotdesc.inertia.table.inertia_table`), computed when None.

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 
+from robotdesc.errors import UsageError
 from robotdesc.rules.registry import Rule
 
 _EXACT = 1000  # specificity of a full code or a rule name
@@ -55,6 +56,17 @@ def unknown_selectors(selectors: Iterable[str], rules: Iterable[Rule]) -> list[s
     return [s for s in selectors
             if s.strip().upper() != "ALL" and not any(specificity(s, r.code, r.name)
                                                       for r in known)]
+
+
+def check_selectors(selectors: Iterable[str], rules: Iterable[Rule], flag: str) -> None:
+    """Refuse a selector that matches none of `rules`, naming the option it came from.
+
+    Raises:
+        UsageError: the first selector that matches no rule.
+    """
+    unknown = unknown_selectors(selectors, rules)
+    if unknown:
+        raise UsageError(f"{flag}: no rule matches '{unknown[0]}' (see `robotdesc rules`)")
 
 
 def find_rule(rules: Iterable[Rule], code_or_name: str) -> Rule | None:

@@ -5,9 +5,9 @@ workspace) is searched for top-level descriptions: `*.urdf` files, and `*.xacro`
 `*.urdf.xacro` files (or `.urdf` files written in xacro) whose `<robot>` root makes a robot
 rather than merely defining macros or properties for others to include. A file that another
 robot found there includes is a fragment of that robot, not a robot of its own (it is linted
-through its includer). An empty `<robot/>` placeholder is skipped with a note. When the config that governs a file lists `targets`,
-those targets (with their argument matrices) replace discovery for the files that config
-governs.
+through its includer). An empty `<robot/>` placeholder is skipped with a note. When the
+config that governs a file lists `targets`, those targets (with their argument matrices)
+replace discovery for the files that config governs.
 
 The packages under a searched directory are passed to each of its targets (as config
 package entries), so that `$(find pkg)` and `package://pkg` resolve to them even when the
@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import dataclasses
 import fnmatch
+import functools
 import glob
 import logging
 import os
@@ -300,7 +301,21 @@ def is_srdf(path: str, root: XmlElement | None = None) -> bool:
 
 
 def _read_root(path: str) -> XmlElement | None:
-    """The root element of an XML file, or None when it is not well-formed."""
+    """The root element of an XML file, or None when it is not well-formed (or unreadable).
+
+    A search asks for each file several times (placeholder, kind, includes of others): the
+    parsed root is kept per file state (size and modification time), never served stale.
+    """
+    try:
+        status = os.stat(path)
+    except OSError:
+        return None
+    return _parsed_root(os.path.abspath(path), status.st_size, status.st_mtime_ns)
+
+
+@functools.lru_cache(maxsize=4096)
+def _parsed_root(path: str, size: int, mtime_ns: int) -> XmlElement | None:
+    """`_read_root` for one state of the file (`size`, `mtime_ns` key the cache only)."""
     from lxml import etree
 
     parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
