@@ -17,9 +17,12 @@ from typing import Mapping
 
 from robotdesc import errors
 from robotdesc.cache_dir import default_cache_dir
+from robotdesc.digest import bytes_digest
 from robotdesc.expansion import cache
+from robotdesc.expansion.answer import check_expanded
 from robotdesc.expansion.packages import PackageResolverConfig
 from robotdesc.expansion.result import Expanded, ExpansionNote, ResolvedPackage
+from robotdesc.expansion.roots import worker_roots
 from robotdesc.source import Span
 
 __all__ = ["ExpandOptions", "Expanded", "ResolvedPackage", "expand_file", "is_xacro"]
@@ -155,10 +158,11 @@ def expand_file(path: str | Path, args: Mapping[str, str] | None = None, *,
     key = None
     if options.use_cache:
         cache_root = cache_root or default_cache_dir()
-        key = cache.cache_key({"file": str(path), "args": sorted(args.items()),
+        key = cache.cache_key({"file": str(path), "digest": bytes_digest(data),
+                               "args": sorted(args.items()),
                                "resolver": resolver.__dict__, "trusted": options.trusted,
                                "env": sorted(env.items()), "max_macro_depth": options.max_macro_depth})
-        hit = cache.load(cache_root, key)
+        hit = _checked(cache.load(cache_root, key, str(path)), path, resolver, options)
         if hit is not None:
             log.debug("expansion cache hit for %s", path)
             _log_packages(hit)
@@ -174,6 +178,19 @@ def expand_file(path: str | Path, args: Mapping[str, str] | None = None, *,
     if key is not None and cache_root is not None:
         cache.store(cache_root, key, expanded)
     return _with_notes(expanded, args, options)
+
+
+def _checked(hit: Expanded | None, path: Path, resolver: PackageResolverConfig,
+             options: ExpandOptions) -> Expanded | None:
+    """A cache hit whose every path the parent can justify for this run (else a miss)."""
+    if hit is None or options.trusted:
+        return hit
+    try:
+        check_expanded(hit, worker_roots(path, resolver), path)
+    except errors.InputError as exc:
+        log.debug("expansion cache: entry for %s not used: %s", path, exc)
+        return None
+    return hit
 
 
 def _with_notes(expanded: Expanded, args: Mapping[str, str], options: ExpandOptions) -> Expanded:

@@ -28,8 +28,8 @@ from robotdesc.source import Span
 
 log = logging.getLogger(__name__)
 
-_FORMAT = 5  # 2: declared_args and env_defaults; 3: the key inside; 4: passed values;
-#              5: read_args
+_FORMAT = 6  # 2: declared_args and env_defaults; 3: the key inside; 4: passed values;
+#              5: read_args; 6: the top file's digest in the key and among the inputs
 #: The largest entry read (an expanded document of a very large robot is a few MB).
 MAX_ENTRY_BYTES = 64 << 20
 
@@ -50,8 +50,14 @@ def _entry_path(cache_dir: Path, key: str) -> Path:
     return cache_dir / "expand" / key[:2] / f"{key}.json"
 
 
-def load(cache_dir: Path | None, key: str) -> Expanded | None:
-    """The cached expansion for `key`, or None when absent, stale, unusable or off."""
+def load(cache_dir: Path | None, key: str, top: str) -> Expanded | None:
+    """The cached expansion for `key`, or None when absent, stale, unusable or off.
+
+    A cache folder may be shared (a CI cache across branches) or planted, so an entry is
+    believed only when it records the digests of its inputs, the top file `top` among them,
+    every file its expansion names is one of them, and every one still matches. The caller
+    then checks its paths against the roots of this run (`answer.check_expanded`).
+    """
     if cache_dir is None:
         return None
     entry = _entry_path(cache_dir, key)
@@ -63,12 +69,22 @@ def load(cache_dir: Path | None, key: str) -> Expanded | None:
         if record["key"] != key:
             log.debug("expansion cache: %s was stored under another key", entry)
             return None
-        for path, digest in record["inputs"].items():
+        inputs = record["inputs"]
+        if not isinstance(inputs, dict) or not inputs or top not in inputs or not all(
+                isinstance(p, str) and isinstance(d, str) for p, d in inputs.items()):
+            log.debug("expansion cache: %s records no usable inputs", entry)
+            return None
+        expanded = _decode(record["expanded"])
+        if expanded.source != top or not set(expanded.files) | set(expanded.files_read) \
+                <= set(inputs) | {"<string>"}:
+            log.debug("expansion cache: %s names files it did not record", entry)
+            return None
+        for path, digest in inputs.items():
             if file_digest(path) != digest:
                 log.debug("expansion cache: %s changed", path)
                 return None
-        return _decode(record["expanded"])
-    except (ValueError, KeyError, TypeError, AttributeError) as exc:
+        return expanded
+    except Exception as exc:  # noqa: BLE001 -- any malformed entry is a miss, never an error
         log.debug("expansion cache: ignoring unreadable entry %s (%s)", entry, exc)
         return None
 
@@ -78,7 +94,9 @@ def store(cache_dir: Path | None, key: str, expanded: Expanded) -> None:
     if cache_dir is None:
         return
     inputs = {}
-    for path in dict.fromkeys([*expanded.files, *expanded.files_read]):
+    for path in dict.fromkeys([expanded.source, *expanded.files, *expanded.files_read]):
+        if path == "<string>":
+            continue
         digest = file_digest(path)
         if digest is None:
             return  # an input vanished: do not cache

@@ -28,6 +28,7 @@ import errno
 import functools
 import logging
 import os
+import signal
 import sys
 import sysconfig
 from collections.abc import Iterable
@@ -70,6 +71,7 @@ _FS_RIGHTS_BY_ABI = {1: (1 << 13) - 1, 2: (1 << 14) - 1, 3: (1 << 15) - 1, 4: (1
 _READ = FS_READ_FILE | FS_READ_DIR
 
 # --- prctl and capabilities ---------------------------------------------------------------
+_PR_SET_PDEATHSIG = 1
 _PR_CAPBSET_DROP = 24
 _PR_GET_SECCOMP = 21
 _PR_SET_NO_NEW_PRIVS = 38
@@ -118,9 +120,18 @@ DENIED_SYSCALLS = (
 _SIGNAL_SELF_ONLY = (("kill", 0), ("tgkill", 0), ("rt_sigqueueinfo", 0),
                      ("rt_tgsigqueueinfo", 0))
 #: Calls that may name another process, allowed only with 0 ("this process").
-_ZERO_SELF_ONLY = (("prlimit64", 0), ("setpriority", 1), ("ioprio_set", 1),
-                   ("sched_setaffinity", 0), ("sched_setscheduler", 0), ("sched_setparam", 0),
-                   ("sched_setattr", 0), ("migrate_pages", 0), ("move_pages", 0))
+_ZERO_SELF_ONLY = (("prlimit64", 0), ("setpriority", 1), ("getpriority", 1),
+                   ("ioprio_set", 1), ("ioprio_get", 1), ("sched_setaffinity", 0),
+                   ("sched_setscheduler", 0), ("sched_setparam", 0), ("sched_setattr", 0),
+                   ("sched_getaffinity", 0), ("sched_getscheduler", 0), ("sched_getparam", 0),
+                   ("sched_getattr", 0), ("sched_rr_get_interval", 0), ("get_robust_list", 0),
+                   ("migrate_pages", 0), ("move_pages", 0), ("setpgid", 0), ("setpgid", 1),
+                   ("getpgid", 0), ("getsid", 0))
+#: Calls whose "which" argument says what the "who" means: only a single process is allowed
+#: (PRIO_PROCESS = 0, IOPRIO_WHO_PROCESS = 1); a process group or a whole user is not, even
+#: with who = 0 (`setpriority(PRIO_USER, 0, 19)` renices every process of the user).
+_WHICH_PROCESS_ONLY = (("setpriority", 0, 0), ("getpriority", 0, 0), ("ioprio_set", 0, 1),
+                       ("ioprio_get", 0, 1))
 
 
 class ConfinementError(Exception):
@@ -268,6 +279,15 @@ def _capabilities() -> tuple[int, int]:
     return effective, permitted
 
 
+def die_with_parent(parent_pid: int) -> None:
+    """Ask the kernel to SIGKILL this process when its parent ends (Linux; elsewhere the
+    parent's handlers alone end the worker). Ends at once if the parent is already gone."""
+    if _libc is not None:
+        _libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+    if os.getppid() != parent_pid:
+        os._exit(1)
+
+
 def drop_privileges() -> None:
     """Set no_new_privs and drop every capability the process holds."""
     _prctl(_PR_SET_NO_NEW_PRIVS, 1)
@@ -346,6 +366,8 @@ def restrict_syscalls(pid: int) -> None:
         add(kill, name, sc.Arg(index, sc.NE, pid))
     for name, index in _ZERO_SELF_ONLY:
         add(kill, name, sc.Arg(index, sc.NE, 0))
+    for name, index, single in _WHICH_PROCESS_ONLY:
+        add(kill, name, sc.Arg(index, sc.NE, single))
     rules.load()
 
 

@@ -10,13 +10,21 @@ import signal
 import subprocess
 import sys
 from pathlib import Path
-from typing import Any
 
 from robotdesc import errors
 from robotdesc.expansion import confine
-from robotdesc.expansion.packages import PackageResolver, PackageResolverConfig
-from robotdesc.expansion.result import EnvDefault, Expanded, MacroRecursion, ResolvedPackage
-from robotdesc.expansion.sandbox import is_within
+from robotdesc.expansion.answer import (
+    MAX_TEXT,
+    check_packages,
+    check_paths,
+    invalid,
+    parse_expanded,
+    parse_failure,
+)
+from robotdesc.expansion.exchange import exchange, worker_group
+from robotdesc.expansion.packages import PackageResolverConfig
+from robotdesc.expansion.result import Expanded
+from robotdesc.expansion.roots import Roots, worker_roots
 from robotdesc.source import Span
 
 log = logging.getLogger(__name__)
@@ -25,16 +33,6 @@ log = logging.getLogger(__name__)
 _WARNED_UNCONFINED: list[bool] = []
 #: Characters of the worker's stderr passed through to the log (no terminal control codes).
 _PRINTABLE = {c: None for c in range(32) if c not in (9,)} | {127: None}
-
-_ERROR_KINDS = {
-    "XmlSyntaxError": errors.XmlSyntaxError,
-    "ExpansionError": errors.ExpansionError,
-    "SandboxViolation": errors.SandboxViolation,
-    "LimitExceeded": errors.LimitExceeded,
-    "PackageNotFoundError": errors.ExpansionError,
-    "SandboxUnavailable": errors.SandboxUnavailable,
-}
-
 
 @dataclasses.dataclass(frozen=True)
 class WorkerLimits:
@@ -84,41 +82,6 @@ def require_confinement(path: Path) -> None:
         "is code: pass --trusted only for files you trust", Span(str(path)))
 
 
-@dataclasses.dataclass(frozen=True)
-class Roots:
-    """What the worker may read.
-
-    Attributes:
-        known: every package the resolver chain can return, in chain order.
-        data: the folders (and files) the OS lets the worker read besides Python's code.
-        guard: the roots the audit guard allows from the start (packages found later by
-            `$(find)` are added to it as they are used).
-    """
-
-    known: tuple[ResolvedPackage, ...]
-    data: tuple[str, ...]
-    guard: tuple[str, ...]
-
-
-def worker_roots(path: Path, resolver: PackageResolverConfig) -> Roots:
-    """Resolve the whole package chain now (in the parent) and derive the readable roots.
-
-    The data roots are the top file's package (or its folder when it has none), every
-    package folder the chain can return and the config's package folders; a `--package-path`
-    folder holding no package is a root itself. Never a whole workspace.
-    """
-    chain = PackageResolver(resolver)
-    known = chain.candidates()
-    top_root = str(chain.enclosing[1]) if chain.enclosing else str(path.resolve().parent)
-    explicit = []
-    for folder in resolver.package_paths:
-        inside = [p.path for p in known if p.source == "--package-path" and is_within(p.path, (folder,))]
-        explicit.extend(inside or [folder])
-    mapped = [folder for _, folder in resolver.package_map]
-    data = tuple(dict.fromkeys([top_root, *explicit, *mapped, *(p.path for p in known)]))
-    return Roots(known, data, tuple(dict.fromkeys([top_root, *explicit])))
-
-
 def run_worker(path: Path, args: dict[str, str], resolver: PackageResolverConfig, *,
                trusted: bool, env: dict[str, str], limits: WorkerLimits,
                env_names: tuple[str, ...] = ()) -> Expanded:
@@ -148,7 +111,7 @@ def run_worker(path: Path, args: dict[str, str], resolver: PackageResolverConfig
     # the worker gets the parent's import path instead, without the current folder.
     search_path = [entry for entry in sys.path if entry]
     bootstrap = (f"import sys; sys.path[:] = {search_path!r}; "
-                 "from robotdesc.expansion.worker import main; main()")
+                 f"from robotdesc.expansion.worker import main; main({os.getpid()})")
     command = [sys.executable, "-B", "-S", *(["-P"] if sys.version_info >= (3, 11) else []),
                "-c", bootstrap]
     try:
@@ -157,29 +120,60 @@ def run_worker(path: Path, args: dict[str, str], resolver: PackageResolverConfig
                                 start_new_session=True)
     except OSError as exc:
         raise errors.RobotdescError(f"cannot start the xacro worker: {exc}") from exc
-    try:
-        out, err = proc.communicate(json.dumps(job).encode(), timeout=limits.timeout_s)
-    except subprocess.TimeoutExpired:
-        os.killpg(proc.pid, signal.SIGKILL)
-        proc.communicate()
+    with worker_group(proc):
+        exchanged = exchange(proc, json.dumps(job).encode(), limits.timeout_s,
+                             answer_cap(limits.max_output_bytes))
+    if exchanged.timed_out:
         raise errors.LimitExceeded(
             f"expansion took longer than {limits.timeout_s:g} s and was stopped (a long-running "
             "expression, or a macro that recurses without end); raise the limit with --timeout",
             Span(str(path)))
-    for line in err.decode("utf-8", "replace").splitlines():
+    for line in exchanged.err.decode("utf-8", "replace").splitlines():
         if line.strip():
             log.warning("xacro: %s", line.translate(_PRINTABLE))
-    if proc.returncode != 0 or not out:
-        raise _crash(proc.returncode, path, limits)
+    if exchanged.err_dropped:
+        log.warning("xacro: %d more bytes of the worker's messages were dropped",
+                    exchanged.err_dropped)
+    if exchanged.overflow:
+        raise errors.LimitExceeded(
+            f"the xacro worker wrote more than {answer_cap(limits.max_output_bytes)} bytes of "
+            "answer and was stopped (the output-size limit)", Span(str(path)))
+    if proc.returncode != 0 or not exchanged.out:
+        raise _crash(proc.returncode, path, limits, trusted)
+    return _accept(exchanged.out, path, args, roots, trusted, limits)
+
+
+def answer_cap(max_output_bytes: int) -> int:
+    """The most bytes of answer read from the worker: the document's limit, JSON's escapes
+    and the file tables."""
+    return 2 * max_output_bytes + (16 << 20)
+
+
+def _accept(out: bytes, path: Path, args: dict[str, str], roots: Roots, trusted: bool,
+            limits: WorkerLimits) -> Expanded:
+    """The expansion in the worker's answer, checked (see `robotdesc.expansion.answer`).
+
+    Raises:
+        InputError: the failure the worker reports (exit 2, whatever kind it names), or
+            InvalidAnswer when the answer is malformed or names what the parent cannot justify.
+    """
     try:
         answer = json.loads(out)
-        if not answer["ok"]:
-            raise _failure(answer, path)
-        expanded = _expanded(answer, path, args)
-    except (ValueError, KeyError, TypeError, IndexError) as exc:
-        raise _garbled(path, trusted) from exc
+    except (ValueError, RecursionError):
+        raise _garbled(path, trusted) from None
+    if not isinstance(answer, dict) or not isinstance(answer.get("ok"), bool):
+        raise _garbled(path, trusted)
+    if not answer["ok"]:
+        failure, named = parse_failure(answer, path)
+        if not trusted:
+            check_paths(named, roots, path)
+        if answer.get("kind") == "InternalError":
+            log.debug("worker traceback:\n%s", str(answer.get("traceback", ""))[:MAX_TEXT])
+        raise failure
+    expanded, named = parse_expanded(answer, path, args, limits.max_output_bytes)
     if not trusted:
-        _check_answer(expanded, roots, path)
+        check_paths(named, roots, path)
+        check_packages(expanded, roots, path)
     return expanded
 
 
@@ -189,32 +183,11 @@ def _garbled(path: Path, trusted: bool) -> errors.InputError:
             "output?)")
     if trusted:
         return errors.ExpansionError(text, Span(str(path)))
-    return errors.SandboxViolation(f"{text}; the sandbox refused the result", Span(str(path)))
+    return invalid(path, "garbled: not the JSON object the worker writes")
 
 
-def _check_answer(expanded: Expanded, roots: Roots, path: Path) -> None:
-    """Refuse an answer that names files or packages the confined worker could not have used.
-
-    The answer comes from a process that ran untrusted code; the parent reads the files it
-    names (suppression comments, cache digests), so they must lie inside the data roots.
-    """
-    for name in (*expanded.files, *expanded.files_read):
-        if name == "<string>":
-            continue
-        if not os.path.isabs(name) or not is_within(name, roots.data):
-            raise errors.SandboxViolation(
-                f"the xacro worker's answer names '{name}', outside the packages in use; "
-                "the sandbox refused the result", Span(str(path)))
-    known = set(roots.known)
-    for package in expanded.packages:
-        if package not in known:
-            raise errors.SandboxViolation(
-                f"the xacro worker's answer names package '{package.name}' at {package.path}, "
-                "which the resolver does not know; the sandbox refused the result",
-                Span(str(path)))
-
-
-def _crash(returncode: int, path: Path, limits: WorkerLimits) -> errors.RobotdescError:
+def _crash(returncode: int, path: Path, limits: WorkerLimits,
+           trusted: bool) -> errors.RobotdescError:
     if returncode == -signal.SIGSYS:
         return errors.SandboxViolation(
             "the sandbox stopped the xacro worker: an expression made a system call it "
@@ -227,33 +200,7 @@ def _crash(returncode: int, path: Path, limits: WorkerLimits) -> errors.Robotdes
     if returncode == -signal.SIGSEGV or returncode == 1:
         return errors.LimitExceeded(f"the xacro worker ran out of memory or stack "
                                     f"(limit {limits.memory_mb} MiB)", Span(str(path)))
-    return errors.RobotdescError(f"the xacro worker died (exit status {returncode})")
-
-
-def _span(value: list[Any] | None) -> Span | None:
-    return Span(value[0], value[1], value[2] if len(value) > 2 else 0) if value else None
-
-
-def _failure(answer: dict[str, Any], path: Path) -> errors.RobotdescError:
-    kind = answer["kind"]
-    if kind == "InternalError":
-        log.debug("worker traceback:\n%s", answer.get("traceback", ""))
-        return errors.RobotdescError(f"internal error in the xacro worker: {answer['message']}")
-    span = _span(answer.get("span")) or Span(str(path))
-    chain = tuple(s for s in (_span(c) for c in answer.get("call_stack", ())) if s)
-    return _ERROR_KINDS[kind](answer["message"], span, chain)
-
-
-def _expanded(answer: dict[str, Any], path: Path, args: dict[str, str]) -> Expanded:
-    recursion = tuple(MacroRecursion(name, depth, _span(defined) or Span(str(path)), _span(called))
-                      for name, depth, defined, called in answer["macro_recursion"])
-    return Expanded(
-        source=str(path), xml=answer["xml"].encode("utf-8"), files=tuple(answer["files"]),
-        files_read=tuple(answer["files_read"]),
-        packages=tuple(ResolvedPackage(*p) for p in answer["packages"]),
-        macro_recursion=recursion, from_xacro=True, args=tuple(sorted(args.items())),
-        declared_args=tuple((name, _span(span) or Span(str(path)))
-                            for name, span in answer.get("declared_args", ())),
-        read_args=tuple(answer.get("read_args", ())),
-        env_defaults=tuple(EnvDefault(name, default, _span(span) or Span(str(path)))
-                           for name, default, span in answer.get("env_defaults", ())))
+    # the worker ran the description's code, which can end it any way it likes
+    return errors.ExpansionError(
+        f"the xacro worker ended without an answer (exit status {returncode}); an expression "
+        "in the description may have ended it", Span(str(path)))

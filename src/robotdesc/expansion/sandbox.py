@@ -55,8 +55,15 @@ def _real(path: str) -> str:
 
 
 def is_within(path: str, roots: tuple[str, ...] | list[str]) -> bool:
-    """True when the real path of `path` lies inside one of the (real) `roots`."""
-    real = _real(path)
+    """True when the real path of `path` lies inside one of the (real) `roots`.
+
+    A path whose real path cannot be found (a `/proc/1/cwd` link the kernel will not
+    resolve for this process, a name too long) is not within anything: never an error.
+    """
+    try:
+        real = _real(path)
+    except (OSError, ValueError):
+        return False
     return any(real == root or real.startswith(root.rstrip(os.sep) + os.sep) for root in roots)
 
 

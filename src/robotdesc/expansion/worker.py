@@ -264,8 +264,15 @@ def run_job(job: _Job, guard: sandbox.Guard) -> dict[str, object]:
                              for name, default, src in state.env_defaults]}
 
 
-def main() -> None:
-    """Read the job, confine this process (safe mode), expand in a thread, answer."""
+def main(parent_pid: int | None = None) -> None:
+    """Read the job, confine this process (safe mode), expand in a thread, answer.
+
+    Args:
+        parent_pid: the robotdesc process that started this worker: the worker ends when
+            it ends (and at once if it has already gone).
+    """
+    if parent_pid is not None:
+        confine.die_with_parent(parent_pid)
     job: _Job = json.loads(sys.stdin.read())
     sandbox.apply_limits(job["memory_mb"], job["cpu_seconds"])
     guard = sandbox.Guard(safe=not job["trusted"], code_roots=confine.code_roots())

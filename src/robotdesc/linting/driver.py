@@ -16,7 +16,7 @@ from robotdesc.cache_dir import default_cache_dir
 from robotdesc.config import Config, discover_config
 from robotdesc.diagnostics import Diagnostic, Finding, Severity
 from robotdesc.errors import RobotdescError, RuleCrashed
-from robotdesc.expansion import ExpandOptions, expand_file
+from robotdesc.expansion import ExpandOptions, Expanded, expand_file
 from robotdesc.linting import rule_cache
 from robotdesc.linting.result import LintResult
 from robotdesc.linting.select import is_selected, select_rules
@@ -85,7 +85,7 @@ def lint_file(path: str, config: Config | None = None, *,
                               meshes=meshes if "meshes" in rule.needs else None,
                               document=document if "document" in rule.needs else None)
         try:
-            findings = _run_cached(rule, robot, context, expanded.xml, options)
+            findings = _run_cached(rule, robot, context, expanded, options)
         except RobotdescError:
             raise
         except Exception as exc:  # a crashing rule is a bug: report it, naming the rule
@@ -115,16 +115,17 @@ def lint_file(path: str, config: Config | None = None, *,
                       config_path=config.path, rules_run=tuple(r.code for r in rules))
 
 
-def _run_cached(rule: Rule, robot: Robot, context: RuleContext, document: bytes,
+def _run_cached(rule: Rule, robot: Robot, context: RuleContext, expanded: Expanded,
                 options: ExpandOptions) -> list[Finding]:
     """Run one rule; the findings of expensive rules come from the rule cache when valid."""
     if not (options.use_cache and rule_cache.is_cached(rule)):
         return list(run_rule(rule, robot, context))
 
     folder = Path(options.cache_dir) if options.cache_dir else default_cache_dir()
-    key = rule_cache.rule_key(rule, context.options, document, _mesh_files(context),
+    key = rule_cache.rule_key(rule, context.options, expanded.xml, _mesh_files(context),
                               source=robot.source or "")
-    found = rule_cache.load(folder, key)
+    sources = frozenset((expanded.source, *expanded.files, *expanded.files_read))
+    found = rule_cache.load(folder, key, sources)
     if found is None:
         found = list(run_rule(rule, robot, context))
         rule_cache.store(folder, key, found)

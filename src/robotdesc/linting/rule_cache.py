@@ -68,8 +68,15 @@ def rule_key(rule: Rule, options: object, document: bytes, mesh_files: Iterable[
     return hashlib.sha256(material.encode()).hexdigest()
 
 
-def load(cache_dir: Path | None, key: str) -> list[Finding] | None:
-    """The cached findings, or None on a miss (or when the cache is off)."""
+def load(cache_dir: Path | None, key: str,
+         sources: frozenset[str] | None = None) -> list[Finding] | None:
+    """The cached findings, or None on a miss (or when the cache is off).
+
+    Args:
+        sources: the files of this run's description; an entry whose findings point
+            anywhere else (a planted entry naming a secret file, whose lines a report
+            would show) is a miss. None: not checked.
+    """
     if cache_dir is None:
         return None
     raw = read_regular_file(cache_dir / "rules" / f"{key}.json", MAX_ENTRY_BYTES)
@@ -80,7 +87,11 @@ def load(cache_dir: Path | None, key: str) -> list[Finding] | None:
         if data["key"] != key:
             log.debug("rule cache: entry %s was stored under another key", key)
             return None
-        return [_finding(item) for item in data["findings"]]
+        findings = [_finding(item) for item in data["findings"]]
+        if sources is not None and any(not _points_into(f, sources) for f in findings):
+            log.debug("rule cache: entry %s points outside the description", key)
+            return None
+        return findings
     except (ValueError, KeyError, TypeError, IndexError) as exc:
         log.debug("rule cache: ignoring unreadable entry %s (%s)", key, exc)
         return None
@@ -107,6 +118,14 @@ def _record(finding: Finding) -> FindingRecord:
     return {"message": finding.message, "element": finding.element, "fix": finding.fix,
             "where": None if where is None else
             [_span_record(where.span), [_span_record(s) for s in where.macro_stack]]}
+
+
+def _points_into(finding: Finding, sources: frozenset[str]) -> bool:
+    where = finding.where
+    if where is None:
+        return True
+    return all(isinstance(span.path, str) and span.path in sources
+               for span in (where.span, *where.macro_stack))
 
 
 def _finding(item: dict[str, Any]) -> Finding:

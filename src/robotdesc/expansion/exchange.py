@@ -1,0 +1,174 @@
+"""Talking to the worker process with bounded memory, and never leaving it behind.
+
+`exchange` writes the job and reads the answer and the messages at once (no pipe can fill
+and block either side), keeps at most `answer_cap` bytes of answer (past it the worker is
+killed: a flood of output cannot grow the parent) and `MAX_MESSAGE_BYTES` of messages (the
+rest is counted and dropped), and kills the worker's process group at the deadline.
+
+`worker_group` makes sure the worker's group ends with the parent: whatever leaves the
+block (an exception, Ctrl-C) kills it, and while the block runs in the main thread SIGTERM
+and SIGHUP kill it before they take their usual effect on the parent. The worker also asks
+the kernel for SIGKILL when its parent dies (`robotdesc.expansion.worker`), for the cases
+no handler sees (SIGKILL of the parent).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import os
+import selectors
+import signal
+import subprocess
+import threading
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass
+from types import FrameType
+
+log = logging.getLogger(__name__)
+
+#: Bytes of the worker's messages (stderr) kept; the rest is counted and dropped.
+MAX_MESSAGE_BYTES = 256 * 1024
+_CHUNK = 1 << 16
+#: Signals that end the parent and must take the worker with them.
+_ENDING_SIGNALS = (signal.SIGTERM, signal.SIGHUP)
+
+
+@dataclass(frozen=True)
+class Exchanged:
+    """What came back from the worker.
+
+    Attributes:
+        out: the answer (at most the cap).
+        err: the first `MAX_MESSAGE_BYTES` of its messages.
+        err_dropped: bytes of messages dropped past that.
+        overflow: the answer passed the cap and the worker was killed.
+        timed_out: the deadline passed and the worker was killed.
+    """
+
+    out: bytes
+    err: bytes
+    err_dropped: int = 0
+    overflow: bool = False
+    timed_out: bool = False
+
+
+def kill_group(proc: subprocess.Popen[bytes]) -> None:
+    """Kill the worker's whole process group (it leads its own session) and reap it."""
+    try:
+        os.killpg(proc.pid, signal.SIGKILL)
+    except (ProcessLookupError, PermissionError):
+        pass
+    try:
+        proc.wait(timeout=10)
+    except subprocess.TimeoutExpired:
+        log.warning("the xacro worker (pid %d) did not end after SIGKILL", proc.pid)
+
+
+def exchange(proc: subprocess.Popen[bytes], job: bytes, timeout_s: float,
+             answer_cap: int) -> Exchanged:
+    """Send `job` on the worker's stdin, collect stdout/stderr until it exits.
+
+    Args:
+        timeout_s: wall-clock seconds before the worker's group is killed.
+        answer_cap: the most bytes of stdout kept before the worker is killed.
+    """
+    assert proc.stdin is not None and proc.stdout is not None and proc.stderr is not None
+    deadline = time.monotonic() + timeout_s
+    out: list[bytes] = []
+    err: list[bytes] = []
+    out_size = err_size = dropped = 0
+    pending = memoryview(job)
+    selector = selectors.DefaultSelector()
+    os.set_blocking(proc.stdin.fileno(), False)
+    selector.register(proc.stdin, selectors.EVENT_WRITE)
+    selector.register(proc.stdout, selectors.EVENT_READ)
+    selector.register(proc.stderr, selectors.EVENT_READ)
+    try:
+        while selector.get_map():
+            left = deadline - time.monotonic()
+            if left <= 0:
+                kill_group(proc)
+                return Exchanged(b"".join(out), b"".join(err), dropped, timed_out=True)
+            for key, _ in selector.select(min(left, 1.0)):
+                if key.fileobj is proc.stdin:
+                    try:
+                        written = os.write(proc.stdin.fileno(), pending[:_CHUNK])
+                    except BrokenPipeError:
+                        written = len(pending)
+                    pending = pending[written:]
+                    if not pending:
+                        selector.unregister(proc.stdin)
+                        proc.stdin.close()
+                    continue
+                fd = key.fileobj.fileno()  # type: ignore[union-attr]
+                chunk = os.read(fd, _CHUNK)
+                if not chunk:
+                    selector.unregister(key.fileobj)
+                    continue
+                if key.fileobj is proc.stdout:
+                    out_size += len(chunk)
+                    if out_size > answer_cap:
+                        kill_group(proc)
+                        return Exchanged(b"", b"".join(err), dropped, overflow=True)
+                    out.append(chunk)
+                else:
+                    keep = max(0, MAX_MESSAGE_BYTES - err_size)
+                    err.append(chunk[:keep])
+                    err_size += min(len(chunk), keep)
+                    dropped += len(chunk) - min(len(chunk), keep)
+    finally:
+        selector.close()
+        for stream in (proc.stdin, proc.stdout, proc.stderr):
+            with contextlib.suppress(OSError):
+                stream.close()
+    try:
+        proc.wait(timeout=max(0.1, deadline - time.monotonic()))
+    except subprocess.TimeoutExpired:
+        kill_group(proc)
+        return Exchanged(b"".join(out), b"".join(err), dropped, timed_out=True)
+    return Exchanged(b"".join(out), b"".join(err), dropped)
+
+
+class _Ended(BaseException):
+    """A signal that ends the parent arrived while a worker ran."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.signum = signum
+
+
+@contextlib.contextmanager
+def worker_group(proc: subprocess.Popen[bytes]) -> Iterator[None]:
+    """For the duration: the worker's group dies with the parent (see the module)."""
+    previous: dict[int, object] = {}
+    if threading.current_thread() is threading.main_thread():
+        def end(signum: int, frame: FrameType | None) -> None:
+            raise _Ended(signum)
+
+        for signum in _ENDING_SIGNALS:
+            try:
+                old = signal.getsignal(signum)
+                if old is signal.SIG_IGN:
+                    continue
+                previous[signum] = signal.SIG_DFL if old is None else old
+                signal.signal(signum, end)
+            except (ValueError, OSError):
+                continue
+    ended: int | None = None
+    try:
+        yield
+    except _Ended as signalled:
+        ended = signalled.signum
+    finally:
+        kill_group(proc)  # also what the worker left in its group (--trusted may fork)
+        for number, handler in previous.items():
+            signal.signal(number, handler)  # type: ignore[arg-type]
+    if ended is not None:
+        log.debug("signal %d: the xacro worker was killed with its group", ended)
+        handler = previous.get(ended)
+        if callable(handler):
+            handler(ended, None)
+        os.kill(os.getpid(), ended)
+        raise SystemExit(128 + ended)
