@@ -24,6 +24,7 @@ from robotdesc.commands.inputs import (
 from robotdesc.config import load_config
 from robotdesc.diagnostics import Severity
 from robotdesc.errors import InputError, UsageError
+from robotdesc.source import Span
 from robotdesc.linting.baseline import apply_baseline, read_baseline, render_baseline
 from robotdesc.linting.inputs import run_inputs
 from robotdesc.linting.result import LintFailure, LintResult
@@ -108,6 +109,9 @@ def run_lint(ns: argparse.Namespace) -> int:
             continue
         if discovery.directory:
             _write_discovery(sys.stderr, discovery)
+        failures.extend(LintFailure(link, InputError(
+            "a symlink whose target lies outside the linted folder; not read", Span(link)))
+            for link in discovery.refused)
         targets.extend(discovery.targets)
     _check_lint_outputs(ns, targets)
     if ns.fix or ns.diff:

@@ -9,6 +9,9 @@ from typing import TYPE_CHECKING
 from robotdesc.config.parse import parse_toml, read_text
 from robotdesc.config.schema import Config
 from robotdesc.config.validate import config_from_mapping
+from robotdesc.errors import ConfigError
+from robotdesc.source import Span
+from robotdesc.trust import leaves_tree
 
 if TYPE_CHECKING:
     from robotdesc.rules.registry import Rule
@@ -48,16 +51,41 @@ def discover_config(target: str, rules: Sequence[Rule] | None = None) -> Config:
         rules: the known rules (default: every registered rule).
     """
     found = find_config_file(target)
-    return load_config(found, rules) if found else Config()
+    return load_config(found, rules, scanned=True) if found else Config()
 
 
-def load_config(path: str, rules: Sequence[Rule] | None = None) -> Config:
+def scanned_tree(config_path: str) -> str:
+    """The tree a discovered config belongs to: the nearest folder at or above it holding a
+    VCS marker (the repository), else the config's own folder."""
+    folder = os.path.dirname(os.path.abspath(config_path))
+    here = folder
+    while True:
+        if any(os.path.exists(os.path.join(here, marker)) for marker in VCS_MARKERS):
+            return here
+        parent = os.path.dirname(here)
+        if parent == here:
+            return folder
+        here = parent
+
+
+def load_config(path: str, rules: Sequence[Rule] | None = None, *,
+                scanned: bool = False) -> Config:
     """Read and validate one config file (robotdesc.toml or pyproject.toml).
 
+    Args:
+        scanned: the config was found in the scanned tree (not named by the user with
+            `--config`): it may only name folders inside its repository, and a config file
+            that is a symlink out of it is refused.
+
     Raises:
-        ConfigError: unreadable TOML, unknown keys, bad values; the message names the file.
+        ConfigError: unreadable TOML, unknown keys, bad values, a path outside the tree;
+            the message names the file.
     """
     path = os.path.abspath(path)
+    tree = scanned_tree(path) if scanned else None
+    if tree is not None and leaves_tree(path, tree):
+        raise ConfigError("config file is a symlink out of the repository that holds it; "
+                          "not read", Span(path))
     text = read_text(path)
     document = parse_toml(text, path)
     if os.path.basename(path) == "pyproject.toml":
@@ -66,7 +94,7 @@ def load_config(path: str, rules: Sequence[Rule] | None = None) -> Config:
     else:
         table = document
         prefix = ""
-    return config_from_mapping(table, path, text=text, prefix=prefix, rules=rules)
+    return config_from_mapping(table, path, text=text, prefix=prefix, rules=rules, tree=tree)
 
 
 def _configures_robotdesc(path: str) -> bool:

@@ -15,13 +15,15 @@ from robotdesc.config.schema import KEYS, Config, TargetSpec
 from robotdesc.diagnostics import Severity
 from robotdesc.linting.select import find_rule, unknown_selectors
 from robotdesc.mesh.settings import MeshSettings
+from robotdesc.trust import is_broad_folder, real_within
 
 if TYPE_CHECKING:
     from robotdesc.rules.registry import Rule
 
 
 def config_from_mapping(table: Mapping[str, Any], path: str, *, text: str = "",
-                        prefix: str = "", rules: Sequence[Rule] | None = None) -> Config:
+                        prefix: str = "", rules: Sequence[Rule] | None = None,
+                        tree: str | None = None) -> Config:
     """Validate a robotdesc config table (already parsed from TOML).
 
     Args:
@@ -30,6 +32,10 @@ def config_from_mapping(table: Mapping[str, Any], path: str, *, text: str = "",
         text: the file's text, used to point messages at a line (best effort).
         prefix: the table's dotted prefix in the file, for messages.
         rules: the known rules (default: every registered rule).
+        tree: for a config found inside a scanned tree (not the user's own `--config`),
+            that tree's folder: its `packages` and `targets` may only name paths inside it,
+            and never a home folder or `/` as a whole (the scanned repository does not
+            decide what the xacro worker may read).
 
     Raises:
         ConfigError: an unknown key or a bad value, at its line.
@@ -55,10 +61,10 @@ def config_from_mapping(table: Mapping[str, Any], path: str, *, text: str = "",
         rule_options=_rule_options(table.get("rules", {}), where, known),
         severity=_severities(table.get("severity", {}), where, known),
         fail_on=_severity_value(table.get("fail_on", "info"), "fail-on", where),
-        packages=_packages(table.get("packages", {}), where),
+        packages=_packages(table.get("packages", {}), where, tree),
         args=_string_table(table.get("args", {}), "args", where),
         meshes=_mesh_settings(table.get("meshes", {}), where),
-        targets=_targets(table.get("targets", []), where),
+        targets=_targets(table.get("targets", []), where, tree),
     )
 
 
@@ -180,13 +186,28 @@ def _mesh_settings(value: Any, where: Locator) -> MeshSettings:
         raise where.error("meshes", f"meshes: {exc}") from None
 
 
-def _packages(value: Any, where: Locator) -> tuple[tuple[str, str], ...]:
+def _packages(value: Any, where: Locator, tree: str | None) -> tuple[tuple[str, str], ...]:
     base = os.path.dirname(where.path)
-    return tuple((name, os.path.normpath(os.path.join(base, os.path.expanduser(directory))))
-                 for name, directory in _string_table(value, "packages", where))
+    pairs = tuple((name, os.path.normpath(os.path.join(base, os.path.expanduser(directory))))
+                  for name, directory in _string_table(value, "packages", where))
+    for name, folder in pairs:
+        _inside_tree(folder, f"packages.{name}", name, where, tree)
+    return pairs
 
 
-def _targets(value: Any, where: Locator) -> tuple[TargetSpec, ...]:
+def _inside_tree(path: str, what: str, key: str, where: Locator, tree: str | None) -> None:
+    """Refuse a path a config found in the scanned tree may not name (see `tree`)."""
+    if tree is None:
+        return
+    if is_broad_folder(path) or not real_within(path, (os.path.realpath(tree),)):
+        raise where.error(key, f"{what} names '{path}', outside the repository that holds "
+                               f"this config ({tree}); a config inside the scanned tree may "
+                               "only name folders inside it. Name other folders with "
+                               "--package-path, ROS_PACKAGE_PATH/AMENT_PREFIX_PATH or your "
+                               "own --config")
+
+
+def _targets(value: Any, where: Locator, tree: str | None) -> tuple[TargetSpec, ...]:
     """`[[targets]]` tables: `file` (relative to the config), optional `args` and `matrix`."""
     if not isinstance(value, list) or not all(isinstance(item, dict) for item in value):
         raise where.error("targets", "'targets' must be an array of tables "
@@ -202,6 +223,7 @@ def _targets(value: Any, where: Locator) -> tuple[TargetSpec, ...]:
         if not isinstance(file, str) or not file:
             raise where.error("targets", "each target needs file = \"path/to/robot.urdf.xacro\"")
         path = os.path.normpath(os.path.join(base, os.path.expanduser(file)))
+        _inside_tree(path, "targets.file", file, where, tree)
         if not os.path.isfile(path):
             raise where.error(file, f"target file '{file}' does not exist")
         matrix = item.get("matrix", {})

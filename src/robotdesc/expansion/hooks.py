@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import os
 import re
+import sys
 import xml.dom
 import xml.dom.expatbuilder
 import xml.parsers.expat
@@ -201,6 +202,26 @@ def splice_replace_node(node: Node, by: Node | list[Node] | None,
     target.parentNode = target.previousSibling = target.nextSibling = None
 
 
+_DECLARED_ENCODING = re.compile(rb"""^\s*<\?xml[^>]*\bencoding\s*=\s*["']([A-Za-z0-9._-]+)["']""")
+
+
+def _as_xacro_reads(data: bytes, path: str) -> str | bytes:
+    """The file's text as xacro reads it: UTF-8 whatever the XML declaration says (xacro
+    opens files as text in a UTF-8 locale and expat then ignores the declaration). A file
+    that is not UTF-8 is left to its declaration (bytes), where xacro would fail. A
+    declaration that disagrees with UTF-8 bytes is said on stderr (logged by the parent)."""
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        return data
+    declared = _DECLARED_ENCODING.match(data)
+    name = declared.group(1).decode("ascii").lower().replace("_", "-") if declared else "utf-8"
+    if name not in ("utf-8", "utf8") and not text.isascii():
+        print(f"{path}: the XML declaration says encoding=\"{name}\" but the file is UTF-8; "
+              "read as UTF-8, as xacro does (fix the declaration)", file=sys.stderr)
+    return text
+
+
 def install(state: ExpansionState, find_package: Callable[[str], str],
             check_file: Callable[[str], None]) -> None:
     """Patch the xacro module so that expansion records provenance into `state`.
@@ -240,7 +261,8 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
             raise IncludeCycle(f"include cycle: {cycle}")
         try:
             with open(path, "rb") as stream:
-                return _make_builder(state, path).parseFile(stream)
+                data = stream.read()
+            return _make_builder(state, path).parseString(_as_xacro_reads(data, path))
         except OSError as exc:
             xacro.filestack.pop()
             raise xacro.XacroException(f"{exc.strerror}: {filename}", exc=exc)

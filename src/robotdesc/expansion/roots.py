@@ -17,6 +17,7 @@ from pathlib import Path
 from robotdesc.expansion.packages import PackageResolver, PackageResolverConfig
 from robotdesc.expansion.result import ResolvedPackage
 from robotdesc.expansion.sandbox import is_within
+from robotdesc.trust import is_broad_folder
 
 log = logging.getLogger(__name__)
 
@@ -39,22 +40,6 @@ class Roots:
     known: tuple[ResolvedPackage, ...]
     data: tuple[str, ...]
     guard: tuple[str, ...]
-
-
-def _homes() -> set[str]:
-    """The real paths of home folders: the user's, and `/root` and `/home` themselves."""
-    homes = {"/", "/root", "/home"}
-    for candidate in (os.environ.get("HOME", ""), os.path.expanduser("~")):
-        if candidate:
-            homes.add(os.path.realpath(candidate))
-    return homes
-
-
-def is_broad_folder(folder: str) -> bool:
-    """True for `/`, a home folder or `/home`: never granted as a whole."""
-    real = os.path.realpath(folder)
-    return real in _homes() or os.path.dirname(real) == "/home" \
-        or real == os.path.dirname(real)
 
 
 def loose_file_roots(top: Path) -> tuple[str, ...]:

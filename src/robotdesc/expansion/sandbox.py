@@ -18,6 +18,8 @@ import os
 import sys
 from dataclasses import dataclass, field
 
+from robotdesc.trust import real_within
+
 #: Audit events refused outright in safe mode (prefix match on the event name).
 _FORBIDDEN_EVENTS = (
     "os.system", "os.exec", "os.posix_spawn", "os.spawn", "os.fork", "os.forkpty", "os.kill",
@@ -55,16 +57,9 @@ def _real(path: str) -> str:
 
 
 def is_within(path: str, roots: tuple[str, ...] | list[str]) -> bool:
-    """True when the real path of `path` lies inside one of the (real) `roots`.
-
-    A path whose real path cannot be found (a `/proc/1/cwd` link the kernel will not
-    resolve for this process, a name too long) is not within anything: never an error.
-    """
-    try:
-        real = _real(path)
-    except (OSError, ValueError):
-        return False
-    return any(real == root or real.startswith(root.rstrip(os.sep) + os.sep) for root in roots)
+    """True when the real path of `path` lies inside one of the (real) `roots` (never raises:
+    see `robotdesc.trust.real_within`)."""
+    return real_within(path, roots)
 
 
 @dataclass

@@ -33,6 +33,7 @@ from robotdesc.errors import InputError
 from robotdesc.expansion.packages import crawl_packages, enclosing_package
 from robotdesc.linting.matrix import Variant, matrix_variants, variant_label
 from robotdesc.source import Span
+from robotdesc.trust import leaves_tree
 
 if TYPE_CHECKING:
     from lxml import etree
@@ -98,6 +99,9 @@ class Discovery:
             search includes (e.g. a `*_common.urdf.xacro`), skipped: its includer is linted.
         packages: the (name, folder) pairs found under the directory and given to its
             targets.
+        refused: description files that are symlinks whose real path leaves the searched
+            directory: never read (a link to `~/.ssh/id_rsa` in a pull request), reported
+            as inputs that could not be checked.
     """
 
     path: str
@@ -108,6 +112,7 @@ class Discovery:
     placeholders: tuple[str, ...] = ()
     packages: tuple[tuple[str, str], ...] = ()
     fragments: tuple[str, ...] = ()
+    refused: tuple[str, ...] = ()
 
 
 def target_name(path: str, variant: Variant = (), base: str | None = None) -> str:
@@ -146,8 +151,11 @@ def discover_targets(path: str, config: Config | None = None) -> Discovery:
         return Discovery(path, False, tuple(_expand(absolute, configs.for_file(absolute),
                                                     specs)))
     packages = _packages_under(path)
-    robots, libraries, placeholders, semantic = [], [], [], []
+    robots, libraries, placeholders, semantic, refused = [], [], [], [], []
     for candidate in sorted(_walk(path)):
+        if leaves_tree(candidate, path):
+            refused.append(candidate)
+            continue
         kind = "placeholder" if is_placeholder(candidate) else \
             description_kind(candidate, dict(packages))
         if kind == "placeholder":
@@ -178,14 +186,14 @@ def discover_targets(path: str, config: Config | None = None) -> Discovery:
     for file in skipped_placeholders:
         log.warning("note: skipped %s: an empty <robot/> placeholder, nothing to lint",
                     target_name(file, (), path))
-    if not targets and not unlisted and not skipped_placeholders:
+    if not targets and not unlisted and not skipped_placeholders and not refused:
         only = f" (only {len(semantic)} SRDF file(s))" if semantic else ""
         raise InputError("no robot description (*.urdf, or *.xacro with a robot that is not "
                          f"only macros) under this directory{only}", Span(path))
     skipped = tuple(f for f in libraries if f not in set(listed))
     return Discovery(path, True, tuple(dict.fromkeys(targets)), skipped, tuple(unlisted),
                      skipped_placeholders, packages,
-                     tuple(f for f in sorted(fragments) if f not in set(listed)))
+                     tuple(f for f in sorted(fragments) if f not in set(listed)), tuple(refused))
 
 
 def included_by_others(robots: list[str], others: list[str],
@@ -433,7 +441,7 @@ class _Configs:
         if found is None:
             return discover_config(path)
         if found not in self._loaded:
-            self._loaded[found] = load_config(found)
+            self._loaded[found] = load_config(found, scanned=True)
         return self._loaded[found]
 
     def seen(self) -> list[Config]:

@@ -19,6 +19,7 @@ import re
 from collections.abc import Callable, Iterable, Sequence
 from typing import TYPE_CHECKING, Any, TextIO
 
+from robotdesc.cache_dir import read_regular_file
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.errors import InputError
 from robotdesc.linting.matrix import variant_label
@@ -37,19 +38,26 @@ _TAG_START = re.compile(r"</?[A-Za-z_][\w:.-]*")
 _SOURCE_WINDOW = 200
 
 
+#: The largest source file whose lines are shown (bytes).
+_MAX_SOURCE_BYTES = 64 << 20
+
+
 class SourceCache:
-    """Reads source lines once per file; a file that cannot be read has no lines."""
+    """Reads source lines once per file; a file that cannot be read has no lines.
+
+    Only regular files are read (never a symlink, FIFO or device a span might name),
+    without blocking and up to `_MAX_SOURCE_BYTES`. Which files a span may name at all is decided
+    where spans enter robotdesc (the worker's answer, the caches): see docs/security.md.
+    """
 
     def __init__(self) -> None:
         self._lines: dict[str, list[str]] = {}
 
     def line(self, path: str, number: int) -> str | None:
         if path not in self._lines:
-            try:
-                with open(path, encoding="utf-8", errors="replace") as handle:
-                    self._lines[path] = handle.read().splitlines()
-            except OSError:
-                self._lines[path] = []
+            data = read_regular_file(path, _MAX_SOURCE_BYTES)
+            self._lines[path] = [] if data is None else \
+                data.decode("utf-8", "replace").splitlines()
         lines = self._lines[path]
         return lines[number - 1] if 0 < number <= len(lines) else None
 
