@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import json
 import logging
 import os
 import sys
@@ -24,8 +25,12 @@ from robotdesc.commands.inputs import (
 from robotdesc.config import load_config
 from robotdesc.diagnostics import Severity
 from robotdesc.errors import InputError, UsageError
-from robotdesc.source import Span
-from robotdesc.linting.baseline import apply_baseline, read_baseline, render_baseline
+from robotdesc.linting.baseline import (
+    apply_baseline,
+    baseline_counts,
+    read_baseline,
+    render_baseline,
+)
 from robotdesc.linting.inputs import run_inputs
 from robotdesc.linting.result import LintFailure, LintResult
 from robotdesc.linting.select import check_selectors
@@ -35,6 +40,7 @@ from robotdesc.progress import progress_for
 from robotdesc.report.formats import FORMAT_NAMES, FORMATS, render_report
 from robotdesc.report.statistics import render_statistics_json, render_statistics_text
 from robotdesc.report.text import render_failure, render_text, write_text
+from robotdesc.source import Span
 
 if TYPE_CHECKING:
     from robotdesc.expansion import ExpandOptions
@@ -223,16 +229,18 @@ def _write_discovery(stream: TextIO, discovery: Discovery) -> None:
 def _apply_baseline(ns: argparse.Namespace, results: list[LintResult],
                     inputs: RunInputs) -> list[LintResult]:
     """--write-baseline records the findings; --baseline (or the written one) hides them."""
-    if ns.write_baseline:
-        write_output(ns.write_baseline, render_baseline(results, ns.write_baseline)
-                     .encode("utf-8"), inputs)
-        count = sum(len(r.diagnostics) for r in results)
-        sys.stderr.write(f"robotdesc: wrote {count} finding(s) to {ns.write_baseline}\n")
     path = ns.write_baseline or ns.baseline
     if not path:
         return results
-    outcome = apply_baseline(results, read_baseline(path),
-                             os.path.dirname(os.path.abspath(path)))
+    if ns.write_baseline:  # applied from memory: the written file is not read back
+        text = render_baseline(results, ns.write_baseline)
+        write_output(ns.write_baseline, text.encode("utf-8"), inputs)
+        count = sum(len(r.diagnostics) for r in results)
+        sys.stderr.write(f"robotdesc: wrote {count} finding(s) to {ns.write_baseline}\n")
+        recorded = baseline_counts(json.loads(text), path)
+    else:
+        recorded = read_baseline(path)
+    outcome = apply_baseline(results, recorded, os.path.dirname(os.path.abspath(path)))
     kept = [dataclasses.replace(after, suppressed_by_baseline=after.suppressed_by_baseline
                                 + len(before.diagnostics) - len(after.diagnostics))
             for before, after in zip(results, outcome.results)]

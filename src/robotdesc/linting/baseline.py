@@ -88,6 +88,15 @@ def read_baseline(path: str) -> Counter[Key]:
                          Span(path, exc.lineno)) from None
     except UnicodeDecodeError as exc:
         raise InputError(f"baseline is not valid JSON: {exc}", Span(path)) from None
+    return baseline_counts(document, path)
+
+
+def baseline_counts(document: object, path: str) -> Counter[Key]:
+    """The recorded findings of a baseline document (as read from `path`), counted by key.
+
+    Raises:
+        InputError: the document is not a robotdesc baseline.
+    """
     if not isinstance(document, dict) or document.get("robotdesc_baseline") != BASELINE_VERSION:
         raise InputError("not a robotdesc baseline (version "
                          f"{BASELINE_VERSION}); write one with --write-baseline", Span(path))

@@ -16,7 +16,7 @@ from robotdesc.cache_dir import default_cache_dir
 from robotdesc.config import Config, discover_config
 from robotdesc.diagnostics import Diagnostic, Finding, Severity
 from robotdesc.errors import RobotdescError, RuleCrashed
-from robotdesc.expansion import ExpandOptions, Expanded, expand_file
+from robotdesc.expansion import Expanded, ExpandOptions, expand_file
 from robotdesc.linting import rule_cache
 from robotdesc.linting.result import LintResult
 from robotdesc.linting.select import is_selected, select_rules
