@@ -39,3 +39,16 @@ def test_read_xml_names_unreadable_and_oversized_files(tmp_path: Path) -> None:
         read_xml(tmp_path / "big.xml", XmlOptions(what="package.xml"), max_bytes=50)
     (tmp_path / "ok.xml").write_bytes(b"<package><name> p </name></package>")
     assert read_xml(tmp_path / "ok.xml").findtext("name") == " p "
+
+
+def test_an_undeclared_prefix_is_kept_as_written_with_a_warning(caplog):
+    """xacro writes `<xacro:element xacro:name="a:b"/>` as `<a:b/>`: well-formed XML 1.0,
+    only not namespace-well-formed; URDF readers take the name as is (issue 28)."""
+    root = parse_xml(b'<robot name="r"><link name="l"/><a:b x:y="1"/></robot>', "r.urdf")
+    assert [child.tag for child in root] == ["link", "a:b"]
+    assert "Namespace prefix" in caplog.text
+
+
+def test_undeclared_prefixes_do_not_excuse_other_faults():
+    with pytest.raises(XmlSyntaxError):
+        parse_xml(b'<robot name="r"><a:b></robot>', "r.urdf")

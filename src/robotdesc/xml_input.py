@@ -18,6 +18,7 @@ raise a `RecursionError`.
 
 from __future__ import annotations
 
+import logging
 import os
 import re
 from dataclasses import dataclass
@@ -58,6 +59,8 @@ class XmlOptions:
     what: str = "XML"
 
 
+log = logging.getLogger(__name__)
+
 DEFAULT_OPTIONS = XmlOptions()
 
 
@@ -86,6 +89,8 @@ def parse_xml(data: bytes, path: str, options: XmlOptions = DEFAULT_OPTIONS) -> 
     try:
         root = etree.fromstring(data, parser)
     except etree.XMLSyntaxError as error:
+        if _only_undeclared_prefixes(parser.error_log):
+            return _with_undeclared_prefixes(data, path, options)
         line, col = error.position if error.position else (error.lineno or 0, 0)
         raise XmlSyntaxError(describe_syntax_error(error.msg or str(error)),
                              Span(path, max(line or 0, 0), max(col or 0, 0))) from None
@@ -95,6 +100,32 @@ def parse_xml(data: bytes, path: str, options: XmlOptions = DEFAULT_OPTIONS) -> 
         raise XmlSyntaxError("malformed XML: the document is empty", Span(path))
     if root.getroottree().docinfo.doctype:
         raise XmlSyntaxError(f"{_DOCTYPE_MESSAGE} in {_article(options.what)}", Span(path, 1))
+    return root
+
+
+#: libxml2's "Namespace prefix a on b is not defined" (domain NAMESPACE).
+_UNDEFINED_PREFIX = 201
+
+
+def _only_undeclared_prefixes(errors: etree._ListErrorLog) -> bool:
+    """True when every error is a prefix used without a declaration: the document is
+    well-formed XML 1.0, only not namespace-well-formed (xacro writes
+    `<xacro:element xacro:name="a:b"/>` as `<a:b/>`, and URDF readers take the name as is)."""
+    return len(errors) > 0 and all(e.type == _UNDEFINED_PREFIX for e in errors)
+
+
+def _with_undeclared_prefixes(data: bytes, path: str, options: XmlOptions) -> etree._Element:
+    """The document whose only fault is undeclared prefixes, names kept as written."""
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, recover=True,
+                             load_dtd=False, dtd_validation=False, huge_tree=False,
+                             remove_comments=options.remove_comments,
+                             remove_pis=options.remove_pis,
+                             remove_blank_text=options.remove_blank_text)
+    root = etree.fromstring(data, parser)
+    if root is None or not _only_undeclared_prefixes(parser.error_log):
+        raise XmlSyntaxError("malformed XML", Span(path))
+    log.warning("%s: %s (kept as written, as xacro and URDF readers do)", path,
+                parser.error_log[0].message)
     return root
 
 

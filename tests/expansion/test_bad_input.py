@@ -108,3 +108,16 @@ def test_cli_exits_2_naming_file_and_line_without_a_traceback(name, error, line,
     assert f"{name}:{line}" in done.stderr
     assert "Traceback" not in done.stdout + done.stderr
     assert not (tmp_path / "ESCAPE_MARKER").exists()
+
+
+@pytest.mark.parametrize("declared", ["ascii", "ISO-8859-1"])
+def test_a_utf8_file_is_read_as_utf8_whatever_it_declares(tmp_path, declared, caplog):
+    """xacro reads files as UTF-8 text in a UTF-8 locale: so does robotdesc, and it says
+    when the declaration disagrees (issue 28)."""
+    top = tmp_path / "robot.urdf.xacro"
+    top.write_bytes(f'<?xml version="1.0" encoding="{declared}"?>\n<robot name="r" '
+                    'xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="bé"/>'
+                    '<xacro:element xacro:name="a:b"/></robot>\n'.encode("utf-8"))
+    expanded = expand_file(top, options=ExpandOptions(use_cache=False))
+    assert 'name="bé"'.encode() in expanded.xml and b"<a:b" in expanded.xml
+    assert "the file is UTF-8" in caplog.text
