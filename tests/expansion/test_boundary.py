@@ -434,3 +434,18 @@ def test_ending_the_parent_ends_the_worker(tmp_path, signum):
             parent.kill()
         for worker in _workers_of(parent.pid):
             os.kill(worker, signal.SIGKILL)
+
+
+@pytest.mark.parametrize("provenance", ["9:1", "0:1*999999999", "x", "0:1|a@7:2", "0:-1"],
+                         ids=["past-table", "huge-chain", "garbage", "passed-past-table",
+                              "negative"])
+def test_forged_provenance_in_the_document_is_refused(canary, provenance):
+    top = str(canary.repo / "attack_pkg" / "urdf" / "attack.urdf.xacro")
+    xml = f"<robot name='x' _rd_src='0:1'><link name='l' _rd_src='{provenance}'/></robot>"
+    path = hostile(canary.repo, forged({"ok": True, "xml": xml, "files": [top],
+                                        "files_read": [top], "packages": [],
+                                        "macro_recursion": []}), disarm=True)
+    done = canary.run("lint", "--no-cache", str(path))
+    assert_refused(done)
+    assert "invalid answer" in done.stderr
+    canary.assert_silent(done)

@@ -19,7 +19,7 @@ from robotdesc import errors
 from robotdesc.cache_dir import default_cache_dir
 from robotdesc.digest import bytes_digest
 from robotdesc.expansion import cache
-from robotdesc.expansion.answer import check_expanded
+from robotdesc.expansion.answer import check_expanded, max_chain
 from robotdesc.expansion.packages import PackageResolverConfig
 from robotdesc.expansion.result import Expanded, ExpansionNote, ResolvedPackage
 from robotdesc.expansion.roots import worker_roots
@@ -161,7 +161,8 @@ def expand_file(path: str | Path, args: Mapping[str, str] | None = None, *,
         key = cache.cache_key({"file": str(path), "digest": bytes_digest(data),
                                "args": sorted(args.items()),
                                "resolver": resolver.__dict__, "trusted": options.trusted,
-                               "env": sorted(env.items()), "max_macro_depth": options.max_macro_depth})
+                               "env": sorted(env.items()),
+                               "max_macro_depth": options.max_macro_depth})
         hit = _checked(cache.load(cache_root, key, str(path)), path, resolver, options)
         if hit is not None:
             log.debug("expansion cache hit for %s", path)
@@ -186,7 +187,8 @@ def _checked(hit: Expanded | None, path: Path, resolver: PackageResolverConfig,
     if hit is None or options.trusted:
         return hit
     try:
-        check_expanded(hit, worker_roots(path, resolver), path)
+        check_expanded(hit, worker_roots(path, resolver), path,
+                       max_chain(options.max_macro_depth))
     except errors.InputError as exc:
         log.debug("expansion cache: entry for %s not used: %s", path, exc)
         return None

@@ -16,6 +16,7 @@ folder can be shared, and an entry planted.
 from __future__ import annotations
 
 import os
+import re
 import stat
 from collections.abc import Iterable
 from pathlib import Path
@@ -24,7 +25,7 @@ from robotdesc import errors
 from robotdesc.expansion.result import EnvDefault, Expanded, MacroRecursion, ResolvedPackage
 from robotdesc.expansion.roots import Roots
 from robotdesc.expansion.sandbox import is_within
-from robotdesc.source import Span
+from robotdesc.source import PASSED_SEPARATOR, PROVENANCE_ATTR, Span
 
 #: Longest message, name or path taken from an answer (characters).
 MAX_TEXT = 8192
@@ -200,11 +201,56 @@ def expanded_paths(expanded: Expanded) -> list[str]:
     return [*expanded.files, *expanded.files_read, *(s.path for s in spans if s is not None)]
 
 
-def check_expanded(expanded: Expanded, roots: Roots, top: Path) -> None:
-    """Both checks on a whole expansion (one read back from the cache, say).
+def check_expanded(expanded: Expanded, roots: Roots, top: Path, max_chain: int) -> None:
+    """Every check on a whole expansion (one read back from the cache, say).
 
     Raises:
-        InvalidAnswer: a path or package the parent cannot justify.
+        InvalidAnswer: a path or package the parent cannot justify, malformed provenance.
     """
     check_paths(expanded_paths(expanded), roots, top)
     check_packages(expanded, roots, top)
+    check_provenance(expanded, top, max_chain)
+
+
+_PROVENANCE = re.compile(rb"\s" + PROVENANCE_ATTR.encode() + rb"""=(?:"([^"]*)"|'([^']*)')""")
+_SITE = re.compile(r"([0-9]{1,9}):([0-9]{1,10})(?:\*([0-9]{1,9}))?")
+
+
+def _valid_provenance(value: str, files: int, max_chain: int) -> bool:
+    """Whether one provenance value decodes within the file table and the chain bound."""
+    chain, _, passed = value.partition(PASSED_SEPARATOR)
+    total = 0
+    for part in chain.split(";"):
+        site = _SITE.fullmatch(part)
+        if site is None or int(site.group(1)) >= files:
+            return False
+        total += int(site.group(3) or 1)
+    if total > max_chain:
+        return False
+    for item in passed.split(",") if passed else ():
+        name, _, where = item.rpartition("@")
+        site = _SITE.fullmatch(where)
+        if not name or site is None or site.group(3) or int(site.group(1)) >= files:
+            return False
+    return True
+
+
+def max_chain(max_macro_depth: int) -> int:
+    """The longest macro chain an element may claim: one site per nesting level, and the
+    include and call sites around them."""
+    return 2 * max_macro_depth + 64
+
+
+def check_provenance(expanded: Expanded, top: Path, max_chain: int) -> None:
+    """Refuse provenance attributes that index past the file table, are malformed, or
+    claim a macro chain longer than `max_chain` (a forged `*999999999` would make the
+    parent build a billion spans).
+
+    Raises:
+        InvalidAnswer: such an attribute.
+    """
+    for match in _PROVENANCE.finditer(expanded.xml):
+        raw = match.group(1) if match.group(1) is not None else match.group(2)
+        if not _valid_provenance(raw.decode("ascii", "replace"), len(expanded.files),
+                                 max_chain):
+            raise invalid(top, "malformed provenance in the document")

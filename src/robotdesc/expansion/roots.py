@@ -45,8 +45,8 @@ class Roots:
 def loose_file_roots(top: Path) -> tuple[str, ...]:
     """The roots of a top file that no package encloses: its folder's visible entries.
 
-    Hidden entries and symlinks out of the folder are left out; in a home folder, `/` or a folder of more than
-    `MAX_LOOSE_ENTRIES` entries only the top file is granted.
+    Hidden entries and symlinks out of the folder are left out; in a home folder, `/` or a
+    folder of more than `MAX_LOOSE_ENTRIES` entries only the top file is granted.
     """
     folder = top.parent
     real_top, real_folder = os.path.realpath(top), os.path.realpath(folder)

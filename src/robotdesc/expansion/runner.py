@@ -17,7 +17,9 @@ from robotdesc.expansion.answer import (
     MAX_TEXT,
     check_packages,
     check_paths,
+    check_provenance,
     invalid,
+    max_chain,
     parse_expanded,
     parse_failure,
 )
@@ -171,6 +173,7 @@ def _accept(out: bytes, path: Path, args: dict[str, str], roots: Roots, trusted:
             log.debug("worker traceback:\n%s", str(answer.get("traceback", ""))[:MAX_TEXT])
         raise failure
     expanded, named = parse_expanded(answer, path, args, limits.max_output_bytes)
+    check_provenance(expanded, path, max_chain(limits.max_macro_depth))
     if not trusted:
         check_paths(named, roots, path)
         check_packages(expanded, roots, path)
