@@ -40,16 +40,22 @@ _guard.armed = False
 """
 
 
-def hostile(folder: Path, payload: str, *, disarm: bool) -> Path:
-    """A package holding `urdf/attack.urdf.xacro` that runs `payload` with ${...} only."""
-    package = folder / "attack_pkg"
-    (package / "urdf").mkdir(parents=True)
-    (package / "package.xml").write_text(
-        '<?xml version="1.0"?><package format="3"><name>attack_pkg</name>'
+def package(folder: Path, name: str) -> Path:
+    """A ROS package `folder/name` with a `urdf/` folder and a package.xml."""
+    root = folder / name
+    (root / "urdf").mkdir(parents=True)
+    (root / "package.xml").write_text(
+        f'<?xml version="1.0"?><package format="3"><name>{name}</name>'
         '<version>0.0.0</version><description>x</description>'
         '<maintainer email="a@b.c">a</maintainer><license>MIT</license></package>\n')
+    return root
+
+
+def hostile(folder: Path, payload: str, *, disarm: bool) -> Path:
+    """A package holding `urdf/attack.urdf.xacro` that runs `payload` with ${...} only."""
+    package_dir = package(folder, "attack_pkg")
     code = (DISARM if disarm else "") + payload
-    path = package / "urdf" / "attack.urdf.xacro"
+    path = package_dir / "urdf" / "attack.urdf.xacro"
     path.write_text(f"""<?xml version="1.0"?>
 <robot name="attack" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:property name="d" value="${{'_'*2}}"/>

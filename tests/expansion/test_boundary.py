@@ -23,7 +23,7 @@ from pathlib import Path
 
 import pytest
 
-from expansion.attack import DISARMED, SRC, assert_refused, hostile, robotdesc, snapshot
+from expansion.attack import DISARMED, SRC, assert_refused, hostile, package, robotdesc, snapshot
 from robotdesc.expansion import ExpandOptions, cache, confine, expand_file, runner
 
 pytestmark = pytest.mark.skipif(not confine.probe().available,
@@ -105,12 +105,12 @@ def test_forged_success_spans_naming_a_secret_are_refused(canary, disarm):
 
 
 def test_a_span_through_a_symlink_in_the_package_is_refused(canary):
-    package = canary.repo / "attack_pkg"
+    package_dir = canary.repo / "attack_pkg"
     path = hostile(canary.repo, forged({
         "ok": False, "kind": "XmlSyntaxError", "message": "bad",
-        "span": [str(package / "urdf" / "inner.xacro"), 2, 1], "call_stack": []}),
+        "span": [str(package_dir / "urdf" / "inner.xacro"), 2, 1], "call_stack": []}),
         disarm=True)
-    (package / "urdf" / "inner.xacro").symlink_to(canary.key)
+    (package_dir / "urdf" / "inner.xacro").symlink_to(canary.key)
     done = canary.run("lint", "--no-cache", str(path))
     assert_refused(done)
     canary.assert_silent(done)
@@ -146,13 +146,7 @@ def test_malformed_answers_are_refused(canary, answer):
 
 
 def _load_yaml_package(repo: Path, expression: str) -> Path:
-    package = repo / "robot_pkg"
-    (package / "urdf").mkdir(parents=True)
-    (package / "package.xml").write_text(
-        "<package format='3'><name>robot_pkg</name><version>0.0.0</version>"
-        "<description>x</description><maintainer email='a@b.c'>a</maintainer>"
-        "<license>MIT</license></package>\n")
-    top = package / "urdf" / "robot.urdf.xacro"
+    top = package(repo, "robot_pkg") / "urdf" / "robot.urdf.xacro"
     top.write_text(f"""<?xml version="1.0"?>
 <robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <link name="${{{expression}}}"/>
