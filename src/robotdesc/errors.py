@@ -87,6 +87,11 @@ class SandboxViolation(InputError):
     """The xacro file tried something safe mode forbids (escaping the package, os access)."""
 
 
+class InvalidAnswer(SandboxViolation):
+    """The xacro worker's answer does not have the shape the worker writes, or names a path
+    the parent cannot justify (exit 2; nothing of the answer is used or shown)."""
+
+
 class SandboxUnavailable(InputError):
     """The xacro worker cannot be confined on this system; untrusted expansion is refused."""
 

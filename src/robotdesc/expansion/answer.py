@@ -49,14 +49,9 @@ FAILURE_KINDS: dict[str, type[errors.InputError]] = {
 _INLINE = "<string>"
 
 
-class InvalidAnswer(errors.SandboxViolation):
-    """The worker's answer does not have the shape the worker writes, or names a path
-    the parent cannot justify (exit 2; the answer is not used)."""
-
-
-def invalid(path: Path, why: str) -> InvalidAnswer:
+def invalid(path: Path, why: str) -> errors.InvalidAnswer:
     """The error for an answer refused because of `why` (no value from the answer in it)."""
-    return InvalidAnswer(f"the xacro worker sent an invalid answer ({why}); the sandbox "
+    return errors.InvalidAnswer(f"the xacro worker sent an invalid answer ({why}); the sandbox "
                          "refused the result", Span(str(path)))
 
 
