@@ -145,10 +145,16 @@ other_robot_controller:
 """
 
 
-def test_r103_controller_naming_a_missing_joint():
+def test_r110_controller_of_the_package_naming_a_missing_joint():
     package = _package(("config/controllers.yaml", YAML, CONTROLLERS))
-    found = _findings("R103", ARM.format(extra=""), package)
+    found = _findings("R110", ARM.format(extra=""), package)
     assert found == ["controller 'arm_controller' names 'elbow', not joints of the robot"]
+    assert _findings("R103", ARM.format(extra=""), package) == []  # not named: R110's
+
+
+def test_r110_is_opt_in():
+    rule_ = get_rule("R110")
+    assert rule_ is not None and rule_.opt_in
 
 
 def test_r103_named_file_outside_the_package():
@@ -164,11 +170,11 @@ def test_r103_yaml_of_a_used_package_that_is_not_named_is_not_judged():
     assert _findings("R103", ARM.format(extra=""), package) == []
 
 
-def test_r103_ros1_controllers_and_bad_yaml():
+def test_r110_ros1_controllers_and_bad_yaml():
     ros1 = "base:\n  type: diff_drive_controller/DiffDriveController\n  left_wheel: wheel\n" \
            "  right_wheel: [wheel, right_wheel]\n"
     package = _package(("config/a.yaml", YAML, ros1), ("config/b.yaml", YAML, "a: [b\n"))
-    found = _findings("R103", ARM.format(extra=""), package)
+    found = _findings("R110", ARM.format(extra=""), package)
     assert found == ["controller 'base' names 'right_wheel', not joints of the robot"]
 
 
@@ -306,6 +312,6 @@ def test_r109_launch_file_that_does_not_parse_is_skipped():
     assert _findings("R109", ARM.format(extra=""), package) == []
 
 
-@pytest.mark.parametrize("code", ["R103", "R106", "R107", "R108", "R109"])
+@pytest.mark.parametrize("code", ["R103", "R106", "R107", "R108", "R109", "R110"])
 def test_package_rules_are_silent_outside_a_lint(code):
     assert _findings(code, ARM.format(extra=GZ_CONTROL)) == []

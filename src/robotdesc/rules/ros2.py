@@ -138,13 +138,13 @@ def ros2_control_interface_mismatch(robot: Robot, ctx: RuleContext) -> Iterator[
 @rule("R103", "controller-unknown-joint", family=FAMILY, severity=Severity.ERROR,
       needs=("package",))
 def controller_unknown_joint(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
-    """Finds a controller in a YAML file that names joints the robot lacks, while naming
-    some it has.
+    """Finds a controller in the controllers YAML the description names (`<parameters>` of
+    a gz_ros2_control / gazebo_ros2_control plugin) that names joints the robot lacks, while
+    naming some it has.
 
-    Judged: the controllers YAML the description names (`<parameters>` of a
-    gz_ros2_control / gazebo_ros2_control plugin) and the YAML files of the description's
-    own package. A controller that names none of the robot's joints is taken to be for
-    another robot or variant and is not judged.
+    A controller that names none of the robot's joints is taken to be for another variant
+    and is not judged (a gripper's controller in a file shared by robots with and without
+    the gripper). YAML files the description does not name: R110 (opt-in).
 
     Why is this bad?
     The controller manager loads the controller but cannot activate it: "not all requested
@@ -167,10 +167,48 @@ def controller_unknown_joint(robot: Robot, ctx: RuleContext) -> Iterator[Finding
     """
     if ctx.package is None:
         return
+    yield from _unknown_controller_joints(robot, ctx.package.named)
+
+
+@rule("R110", "package-controller-unknown-joint", family=FAMILY, severity=Severity.WARNING,
+      needs=("package",), opt_in=True)
+def package_controller_unknown_joint(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds a controller in a YAML file of the description's own package that names joints
+    the robot lacks, while naming some it has (R103 judges the file the description names).
+
+    Opt-in: a package often holds the controllers of several variants (a 7-joint arm's file
+    beside the 6-joint arm's), and the file a launch file passes cannot be told from the
+    package alone.
+
+    Why is this bad?
+    When the file is the one a launch file passes, the controller cannot be activated (see
+    R103).
+
+    Example
+    ```yaml
+    arm_controller:
+      ros__parameters:
+        joints: [shoulder, elbow, wrist_3]
+    ```
+
+    Use instead (for a robot whose last joint is `wrist`):
+    ```yaml
+    arm_controller:
+      ros__parameters:
+        joints: [shoulder, elbow, wrist]
+    ```
+    """
+    if ctx.package is None or not ctx.package.packages:
+        return
+    named = {f.path for f in ctx.package.named}
+    own = tuple(f for f in ctx.package.packages[0].of_kind(YAML) if f.path not in named)
+    yield from _unknown_controller_joints(robot, own)
+
+
+def _unknown_controller_joints(robot: Robot,
+                               files: tuple[PackageFile, ...]) -> Iterator[Finding]:
     names = {joint.name for joint in robot.joints}
-    own = ctx.package.packages[0].of_kind(YAML) if ctx.package.packages else ()
-    judged = {f.path: f for f in (*ctx.package.named, *own)}
-    for file in judged.values():
+    for file in files:
         for controller in controllers(file):
             joints = controller.joints
             if not any(joint in names for joint, _ in joints):
