@@ -36,10 +36,13 @@ GAINS = PACKAGE / "config" / "engineer_control.yaml"
 LOG = logging.getLogger("make_controllers")
 
 #: diff_drive_controller's wheel_separation_multiplier: a skid-steered track turns slower than
-#: its belt speeds say (the belts slip sideways). Measured with scripts/drive_test.py of
-#: engineer_description: with the true separation a commanded 1.82 rad/s gave 0.83 rad/s
-#: in MuJoCo; the multiplier makes the commanded yaw rate the driven one.
+#: its belt speeds say (the belts slip sideways), by how much depends on the physics engine.
+#: ROS 1 (Gazebo Classic): 2.2, tuned in MuJoCo with scripts/drive_test.py of
+#: engineer_description (with the true separation a commanded 1.82 rad/s gave 0.83 rad/s);
+#: Classic's ODE was not measured. ROS 2 (gz-sim, whose default engine is DART): 1.7, from
+#: `robotdesc sim --engine dart --drive` (README: both engines' figures).
 SEPARATION_MULTIPLIER = 2.2
+ROS2_SEPARATION_MULTIPLIER = 1.7
 #: 001, section IV: the diff drives' limits (ROS 1 names; ROS 2 uses the same numbers).
 LINEAR = {"max_velocity": 20.0, "min_velocity": -20.0, "max_acceleration": 0.15,
           "min_acceleration": -0.15, "max_jerk": 0.30}
@@ -152,7 +155,7 @@ def ros2_config(main: int, flipper: int, props: dict[str, float] | None = None,
             "right_wheel_names": wheel_names("right", belt, n),
             "wheel_separation": round(separation, 6),
             "wheel_radius": radius,
-            "wheel_separation_multiplier": SEPARATION_MULTIPLIER,
+            "wheel_separation_multiplier": ROS2_SEPARATION_MULTIPLIER,
             "publish_rate": 50.0,
             "odom_frame_id": "odom",
             "base_frame_id": "base_footprint",
