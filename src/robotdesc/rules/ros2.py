@@ -333,7 +333,7 @@ def gz_world_system_per_model(robot: Robot, ctx: RuleContext) -> Iterator[Findin
 
 
 @rule("R107", "gz-resource-path-not-exported", family=FAMILY, severity=Severity.WARNING,
-      needs=("document", "package"))
+      needs=("document", "package"), opt_in=True)
 def gz_resource_path_not_exported(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds `package://` meshes in a description that loads gz-sim systems, when nothing
     tells gz-sim where the package is: no environment hook setting `GZ_SIM_RESOURCE_PATH`
@@ -342,7 +342,8 @@ def gz_resource_path_not_exported(robot: Robot, ctx: RuleContext) -> Iterator[Fi
     (`AppendEnvironmentVariable`, `SetEnvironmentVariable`).
 
     Reported once per mesh package, at its first mesh. Packages robotdesc did not read are
-    not judged.
+    not judged. Opt-in: the variable is often set by a bringup package the description does
+    not use (so robotdesc does not read it) or in the user's shell.
 
     Why is this bad?
     gz-sim turns `package://pkg/meshes/x.stl` into `model://pkg/meshes/x.stl` and searches
