@@ -75,6 +75,9 @@ def test_rule_options_may_be_keyed_by_rule_name(tmp_path: Path) -> None:
     ("[rules.X101]\nmax_depth = 0\n", "max_depth must be at least 1", 1),
     ("[rules.J101]\nanything = 1\n", "J101 (revolute-without-limit) has no options", 1),
     ("select = [\n", "invalid TOML", 2),
+    ("[sim]\nseparation = 1\n", "unknown key 'sim.separation'", 2),
+    ("[sim]\nseparation-multiplier = { dart = -1 }\n", "must be a positive number", 2),
+    ("[sim]\nseparation-multiplier = 2\n", "table of engine = multiplier", 2),
 ])
 def test_invalid_config_names_file_and_line(tmp_path: Path, text: str, fragment: str,
                                             line: int) -> None:
@@ -91,3 +94,12 @@ def test_invalid_pyproject_key_is_reported_with_its_table(tmp_path: Path) -> Non
     with pytest.raises(ConfigError, match=r"unknown key 'tool\.robotdesc\.foo'") as caught:
         load_config(str(path), RULES)
     assert caught.value.span.line == 5
+
+
+def test_sim_separation_multiplier_per_engine(tmp_path: Path) -> None:
+    path = write(tmp_path / "robotdesc.toml",
+                 "[sim]\nseparation-multiplier = { mujoco = 2.6, dart = 1 }\n")
+    sim = load_config(str(path), RULES).sim
+    assert sim.separation_multiplier_for("mujoco") == 2.6
+    assert sim.separation_multiplier_for("dart") == 1.0
+    assert sim.separation_multiplier_for("other") is None

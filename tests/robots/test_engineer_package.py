@@ -324,7 +324,7 @@ VARIANTS = [{}, {"main_track_wheels": "18", "flipper_track_wheels": "31"}, {"wit
 @pytest.mark.parametrize("args", VARIANTS, ids=lambda a: ",".join(f"{k}={v}" for k, v in a.items()) or "default")
 def test_lints_clean_with_every_rule(args):
     """The acceptance line of the package: no finding at all, every rule family enabled, with
-    the package's own robotdesc.toml (which sets the expected mass and nothing else)."""
+    the package's own robotdesc.toml (which sets the expected mass and no lint setting)."""
     import robotdesc
 
     result = robotdesc.lint(str(TOP), args=args)
@@ -344,8 +344,10 @@ def test_package_config_sets_the_mass_and_hides_nothing():
     assert config.meshes.inertia_source == "collision"
     with open(PACKAGE / "robotdesc.toml", "rb") as stream:
         table = tomllib.load(stream)
-    assert set(table) == {"meshes", "targets"}  # no ignore, select, severity, rules, fail-on
-    assert table["meshes"] == {"expected-mass": TABLE_I_MASS}
+    assert set(table) == {"meshes", "targets", "sim"}  # no ignore, select, severity, rules,
+    assert table["meshes"] == {"expected-mass": TABLE_I_MASS}  # fail-on
+    # the drive test's skid-steer correction in MuJoCo (DART's is the controllers file's)
+    assert table["sim"] == {"separation-multiplier": {"mujoco": 2.5}}
 
 
 def test_no_link_pair_overlaps_at_the_default_configuration():

@@ -15,6 +15,8 @@ from robotdesc.rules.registry import RuleContext, run_rule
 
 RULES_MD = Path(__file__).resolve().parents[2] / "docs" / "rules.md"
 XML_FENCE = re.compile(r"```xml\n(.*?)```", re.DOTALL)
+#: Example fences: XML, or the YAML and launch files the R1xx rules judge.
+EXAMPLE_FENCE = re.compile(r"```(?:xml|yaml|python)\n(.*?)```", re.DOTALL)
 RULES = all_rules()
 
 
@@ -25,7 +27,7 @@ def test_docstring_has_summary_why_and_example(rule_) -> None:
     assert "Why is this bad?" in lines
     assert "Example" in lines
     assert lines.index("Why is this bad?") < lines.index("Example")
-    examples = XML_FENCE.findall(rule_.doc.split("\nExample\n", 1)[1])
+    examples = EXAMPLE_FENCE.findall(rule_.doc.split("\nExample\n", 1)[1])
     assert len(examples) == 2, "an Example section shows the bad XML, then the fix"
 
 

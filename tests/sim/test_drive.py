@@ -76,6 +76,19 @@ def test_rover_drives_as_commanded_in_mujoco(tmp_path, capsys) -> None:
     assert code == (0 if report["passed"] else 1)
 
 
+def test_config_sets_the_separation_multiplier_per_engine(tmp_path, capsys) -> None:
+    pytest.importorskip("mujoco")
+    path = rover_urdf(tmp_path)
+    config = path.parent / "robotdesc.toml"
+    config.write_text("[sim]\nseparation-multiplier = { mujoco = 1.5 }\n")
+    main(["sim", str(path), "--drive", "--format", "json"])
+    groups = json.loads(capsys.readouterr().out)["drive"]["groups"]
+    assert [g["separation_multiplier"] for g in groups] == [1.5]
+    config.write_text("[sim]\nseparation-multiplier = { bullet = 1.5 }\n")
+    assert main(["sim", str(path), "--drive"]) == 2
+    assert "unknown engine 'bullet'" in capsys.readouterr().err
+
+
 def test_drive_without_configuration_says_how_to_give_the_wheels(tmp_path, capsys) -> None:
     pytest.importorskip("mujoco")
     path = rover_urdf(tmp_path, with_config=False)

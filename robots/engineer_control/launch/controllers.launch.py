@@ -5,7 +5,11 @@ ros2 launch engineer_control controllers.launch.py [main_track_wheels:=56] [flip
 The controllers file for the wheel counts is written by `controllers_file_for` (the same
 generator as scripts/make_controllers.py); gz_ros2_control reads it through the model's
 xacro argument controllers_file (engineer_gazebo's gz.launch.py passes both).
-Both diff drives listen on /cmd_vel.
+
+Both diff drives follow /cmd_vel (geometry_msgs/TwistStamped, ROS 2 Jazzy) through the
+remappings of the controller manager that loads them (engineer_gazebo's model gives them to
+gz_ros2_control). The spawner gets none: it only asks the controller manager to load and
+activate the controllers, so remapping its topics would change nothing.
 """
 
 import os
@@ -36,13 +40,22 @@ def controllers_file_for(main_track_wheels, flipper_track_wheels):
     return path
 
 
+#: How long the spawner waits for the controller manager (s): gz_ros2_control starts it only
+#: once gz-sim has the model, which takes long for 212 wheels.
+MANAGER_TIMEOUT = "120"
+
+
+def controller_names(with_gripper="true"):
+    """The controllers to start (the gripper's only with a gripper)."""
+    return [c for c in CONTROLLERS if with_gripper == "true" or c != "gripper_controller"]
+
+
 def spawners(with_gripper="true"):
-    """One controller_manager spawner per controller (the gripper's only with a gripper)."""
-    names = [c for c in CONTROLLERS if with_gripper == "true" or c != "gripper_controller"]
-    return [Node(package="controller_manager", executable="spawner", arguments=[name],
-                 remappings=[(f"/{name}/cmd_vel", "/cmd_vel"), ("~/cmd_vel", "/cmd_vel")],
-                 output="screen")
-            for name in names]
+    """One controller_manager spawner that loads and activates every controller in turn."""
+    return [Node(package="controller_manager", executable="spawner",
+                 arguments=[*controller_names(with_gripper),
+                            "--controller-manager-timeout", MANAGER_TIMEOUT],
+                 output="screen")]
 
 
 def generate_launch_description():

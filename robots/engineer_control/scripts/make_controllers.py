@@ -9,10 +9,17 @@ names depend on the wheel counts (xacro arguments main_track_wheels, flipper_tra
   position controllers (joint_trajectory_controller on effort, with the same per-joint PID
   gains and i_clamp as config/engineer_control.yaml).
 
+The ROS 2 file is for ROS 2 Jazzy's ros2_controllers: the diff drives take
+geometry_msgs/TwistStamped on ~/cmd_vel and read no `use_stamped_vel` or `has_*_limits`
+(ros2_controllers' Jazzy migration notes; a limit is switched off by leaving it out).
+
 The ROS 2 launch file (launch/controllers.launch.py) calls `ros2_yaml` itself for the wheel
-counts it is given, so any count works; the committed files are for the defaults (56, 50).
+counts it is given, so any count works; the committed files are for the defaults (56, 50),
+and config/engineer_ros2_controllers_18_31.yaml for the conclusion's counts (18, 31), which
+engineer_gazebo's model names for those counts (`ros2_file_name`).
 
 Usage: python scripts/make_controllers.py [--main 56] [--flipper 50] [--out-dir DIR]
+(other counts than 56 and 50 write only the ROS 2 file, named for the counts).
 Needs: PyYAML (for the gains); the description package beside this one.
 """
 
@@ -29,10 +36,13 @@ GAINS = PACKAGE / "config" / "engineer_control.yaml"
 LOG = logging.getLogger("make_controllers")
 
 #: diff_drive_controller's wheel_separation_multiplier: a skid-steered track turns slower than
-#: its belt speeds say (the belts slip sideways). Measured with scripts/drive_test.py of
-#: engineer_description: with the true separation a commanded 1.82 rad/s gave 0.83 rad/s
-#: in MuJoCo; the multiplier makes the commanded yaw rate the driven one.
+#: its belt speeds say (the belts slip sideways), by how much depends on the physics engine.
+#: ROS 1 (Gazebo Classic): 2.2, tuned in MuJoCo with scripts/drive_test.py of
+#: engineer_description (with the true separation a commanded 1.82 rad/s gave 0.83 rad/s);
+#: Classic's ODE was not measured. ROS 2 (gz-sim, whose default engine is DART): 1.7, from
+#: `robotdesc sim --engine dart --drive` (README: both engines' figures).
 SEPARATION_MULTIPLIER = 2.2
+ROS2_SEPARATION_MULTIPLIER = 1.7
 #: 001, section IV: the diff drives' limits (ROS 1 names; ROS 2 uses the same numbers).
 LINEAR = {"max_velocity": 20.0, "min_velocity": -20.0, "max_acceleration": 0.15,
           "min_acceleration": -0.15, "max_jerk": 0.30}
@@ -41,6 +51,9 @@ ANGULAR = {"max_velocity": 6.7, "max_acceleration": 0.08, "max_jerk": 0.08}
 POSITION_GROUPS = {"arm_controller": ("waist", "shoulder", "elbow", "head"),
                    "flippers_controller": ("left_flipper",),
                    "gripper_controller": ("p1_left_ee",)}
+
+#: The wheel counts of the committed ROS 1 file and of engineer_ros2_controllers.yaml.
+DEFAULT_COUNTS = (56, 50)
 
 _PROPERTY = re.compile(r'<xacro:property\s+name="([^"]+)"\s+value="([^"$]+)"\s*/>')
 
@@ -142,29 +155,22 @@ def ros2_config(main: int, flipper: int, props: dict[str, float] | None = None,
             "right_wheel_names": wheel_names("right", belt, n),
             "wheel_separation": round(separation, 6),
             "wheel_radius": radius,
-            "wheel_separation_multiplier": SEPARATION_MULTIPLIER,
+            "wheel_separation_multiplier": ROS2_SEPARATION_MULTIPLIER,
             "publish_rate": 50.0,
             "odom_frame_id": "odom",
             "base_frame_id": "base_footprint",
             "enable_odom_tf": odom,
-            "use_stamped_vel": False,
             "pose_covariance_diagonal": [0.001, 0.001, 1000000.0, 1000000.0, 1000000.0, 1000.0],
             "twist_covariance_diagonal": [0.001, 0.001, 1000000.0, 1000000.0, 1000000.0, 1000.0],
-            "linear.x.has_velocity_limits": True,
             "linear.x.max_velocity": LINEAR["max_velocity"],
             "linear.x.min_velocity": LINEAR["min_velocity"],
-            "linear.x.has_acceleration_limits": True,
             "linear.x.max_acceleration": LINEAR["max_acceleration"],
             "linear.x.min_acceleration": LINEAR["min_acceleration"],
-            "linear.x.has_jerk_limits": True,
             "linear.x.max_jerk": LINEAR["max_jerk"],
-            "angular.z.has_velocity_limits": True,
             "angular.z.max_velocity": ANGULAR["max_velocity"],
             "angular.z.min_velocity": -ANGULAR["max_velocity"],
-            "angular.z.has_acceleration_limits": True,
             "angular.z.max_acceleration": ANGULAR["max_acceleration"],
             "angular.z.min_acceleration": -ANGULAR["max_acceleration"],
-            "angular.z.has_jerk_limits": True,
             "angular.z.max_jerk": ANGULAR["max_jerk"],
         }}
     for name, joints in POSITION_GROUPS.items():
@@ -180,12 +186,19 @@ def ros2_config(main: int, flipper: int, props: dict[str, float] | None = None,
     return config
 
 
+def ros2_file_name(main: int, flipper: int) -> str:
+    """The committed ROS 2 file for these counts (engineer_gazebo's model names it)."""
+    if (main, flipper) == DEFAULT_COUNTS:
+        return "engineer_ros2_controllers.yaml"
+    return f"engineer_ros2_controllers_{main}_{flipper}.yaml"
+
+
 def ros2_yaml(main: int, flipper: int, props: dict[str, float] | None = None) -> str:
     import yaml
 
     header = (f"# GENERATED by scripts/make_controllers.py for {main} wheels per main track and\n"
               f"# {flipper} per flipper track: do not edit. ROS 2 controllers of the Engineer\n"
-              "# (gz_ros2_control); gains from config/engineer_control.yaml.\n")
+              "# (gz_ros2_control, ROS 2 Jazzy); gains from config/engineer_control.yaml.\n")
     return header + yaml.safe_dump(ros2_config(main, flipper, props), sort_keys=False,
                                    default_flow_style=None, width=100000)
 
@@ -197,8 +210,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--out-dir", type=Path, default=PACKAGE / "config")
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(message)s")
-    for name, text in (("engineer_tracks.yaml", ros1_tracks_yaml(args.main, args.flipper)),
-                       ("engineer_ros2_controllers.yaml", ros2_yaml(args.main, args.flipper))):
+    files = [(ros2_file_name(args.main, args.flipper), ros2_yaml(args.main, args.flipper))]
+    if (args.main, args.flipper) == DEFAULT_COUNTS:
+        files.insert(0, ("engineer_tracks.yaml", ros1_tracks_yaml(args.main, args.flipper)))
+    for name, text in files:
         (args.out_dir / name).write_text(text, encoding="utf-8")
         LOG.info("wrote %s", args.out_dir / name)
     return 0

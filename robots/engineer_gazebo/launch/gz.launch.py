@@ -3,12 +3,24 @@
 
 ros2 launch engineer_gazebo gz.launch.py [main_track_wheels:=56] [flipper_track_wheels:=50]
                                          [with_gripper:=true] [world:=empty.sdf]
+
+ROS 2 Jazzy + Gazebo Harmonic. gz-sim finds the meshes (package://engineer_description/...
+becomes model://engineer_description/...) through GZ_SIM_RESOURCE_PATH, which this file
+extends by the share folder holding engineer_description (its environment hook does the same
+for a sourced workspace). The controllers are spawned once the model is in gz-sim.
 """
 
 import os
 
 from launch import LaunchDescription
-from launch.actions import DeclareLaunchArgument, IncludeLaunchDescription, OpaqueFunction
+from launch.actions import (
+    AppendEnvironmentVariable,
+    DeclareLaunchArgument,
+    IncludeLaunchDescription,
+    OpaqueFunction,
+    RegisterEventHandler,
+)
+from launch.event_handlers import OnProcessExit
 from launch.launch_description_sources import PythonLaunchDescriptionSource
 from launch.substitutions import LaunchConfiguration, PathJoinSubstitution
 from launch_ros.actions import Node
@@ -52,15 +64,26 @@ def _setup(context):
     share = get_package_share_directory("engineer_gazebo")
     description = ParameterValue(Command(robot_description(share, args, controllers_file)),
                                  value_type=str)
+    create = Node(package="ros_gz_sim", executable="create", output="screen",
+                  arguments=["-topic", "robot_description", "-name", "engineer", "-z", "0.02"])
     return [
         Node(package="robot_state_publisher", executable="robot_state_publisher",
              parameters=[{"robot_description": description, "use_sim_time": True}]),
-        Node(package="ros_gz_sim", executable="create", output="screen",
-             arguments=["-topic", "robot_description", "-name", "engineer", "-z", "0.02"]),
+        create,
         Node(package="ros_gz_bridge", executable="parameter_bridge",
-             parameters=[{"config_file": os.path.join(share, "config", "bridge.yaml")}]),
-        *controllers.spawners(args["with_gripper"]),
+             parameters=[{"config_file": os.path.join(share, "config", "bridge.yaml"),
+                          "use_sim_time": True}]),
+        RegisterEventHandler(OnProcessExit(target_action=create,
+                                           on_exit=controllers.spawners(args["with_gripper"]))),
     ]
+
+
+def mesh_resource_path():
+    """The folder gz-sim must search for model://engineer_description (the share folder
+    holding the package)."""
+    from ament_index_python.packages import get_package_share_directory
+
+    return os.path.dirname(get_package_share_directory("engineer_description"))
 
 
 def generate_launch_description():
@@ -71,4 +94,5 @@ def generate_launch_description():
             [FindPackageShare("engineer_gazebo"), "worlds", LaunchConfiguration("world")])]}.items())
     return LaunchDescription(
         [DeclareLaunchArgument(name, default_value=value) for name, value in ARGS.items()]
-        + [gz_sim, OpaqueFunction(function=_setup)])
+        + [AppendEnvironmentVariable("GZ_SIM_RESOURCE_PATH", mesh_resource_path()),
+           gz_sim, OpaqueFunction(function=_setup)])

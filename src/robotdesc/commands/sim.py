@@ -12,6 +12,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import logging
 import sys
 from typing import TYPE_CHECKING, TextIO
 
@@ -20,6 +21,8 @@ from robotdesc.errors import InputError, UsageError
 from robotdesc.progress import progress_for
 from robotdesc.sim.backend import import_mujoco
 from robotdesc.sim.scene import SceneOptions
+
+log = logging.getLogger(__name__)
 
 if TYPE_CHECKING:
     from robotdesc.sim.compare import Comparison
@@ -203,7 +206,7 @@ def run_engine_checks(ns: argparse.Namespace, single: SingleInput) -> int:
             if text:
                 write_comparison(sys.stdout, loaded.robot.name, comparison)
         if ns.drive:
-            report = _drive(ns, single.source, loaded, engine, scene_options, hold, progress)
+            report = _drive(ns, single, loaded, engine, scene_options, hold, progress)
             document["drive"] = report.as_dict()
             passed = passed and report.passed
             if text:
@@ -213,9 +216,10 @@ def run_engine_checks(ns: argparse.Namespace, single: SingleInput) -> int:
         return 0 if passed else 1
 
 
-def _drive(ns: argparse.Namespace, source: str, loaded: SimInput, engine: Engine,
+def _drive(ns: argparse.Namespace, single: SingleInput, loaded: SimInput, engine: Engine,
            scene_options: SceneOptions, hold: HoldOptions, progress: Progress) -> DriveReport:
-    """The drive test with the configured or given drive joints."""
+    """The drive test with the configured or given drive joints; the config's
+    `[sim] separation-multiplier` for this engine replaces the controllers'."""
     from robotdesc.sim.drive import (
         DriveGroup,
         DriveOptions,
@@ -231,10 +235,22 @@ def _drive(ns: argparse.Namespace, source: str, loaded: SimInput, engine: Engine
         groups = (DriveGroup("options", _names(ns.left_wheels), _names(ns.right_wheels),
                              ns.wheel_separation, ns.wheel_radius),)
     else:
+        from robotdesc.sim.engine import ENGINES
+
+        unknown = [name for name, _ in single.config.sim.separation_multiplier
+                   if name not in ENGINES]
+        if unknown:
+            raise UsageError(f"{single.config.path}: [sim] separation-multiplier names unknown "
+                             f"engine '{unknown[0]}' (known: {', '.join(ENGINES)})")
+        multiplier = single.config.sim.separation_multiplier_for(engine.name)
         groups = tuple(dataclasses.replace(
             group, separation=ns.wheel_separation or group.separation,
-            radius=ns.wheel_radius or group.radius)
-            for group in groups_from_config(source, ns.drive_config))
+            radius=ns.wheel_radius or group.radius,
+            separation_multiplier=multiplier or group.separation_multiplier)
+            for group in groups_from_config(single.source, ns.drive_config))
+        if multiplier is not None:
+            log.info("%s: wheel_separation_multiplier %g in %s ([sim] of %s)", single.source,
+                     multiplier, engine.name, single.config.path)
     groups = resolve_groups(loaded.robot, groups)
     try:
         options = DriveOptions(speed=ns.drive_speed, tolerance=ns.tolerance)

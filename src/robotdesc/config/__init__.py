@@ -49,7 +49,7 @@ from robotdesc.config.discovery import (
     load_config,
 )
 from robotdesc.config.parse import MAX_TOML_DEPTH
-from robotdesc.config.schema import Config, TargetSpec
+from robotdesc.config.schema import Config, SimSettings, TargetSpec
 from robotdesc.config.validate import config_from_mapping
 from robotdesc.mesh.settings import MeshSettings  # the `[meshes]` table (Config.meshes)
 
@@ -59,6 +59,7 @@ __all__ = [
     "VCS_MARKERS",
     "Config",
     "MeshSettings",
+    "SimSettings",
     "TargetSpec",
     "config_from_mapping",
     "discover_config",

@@ -11,7 +11,7 @@ from robotdesc.mesh.settings import MeshSettings
 
 #: The keys of `[tool.robotdesc]` (robotdesc.toml's top level), in snake case.
 KEYS = ("select", "ignore", "per_file_ignores", "rules", "severity", "fail_on", "packages",
-        "args", "meshes", "targets")
+        "args", "meshes", "targets", "sim")
 
 
 @dataclass(frozen=True)
@@ -30,6 +30,24 @@ class TargetSpec:
 
 
 @dataclass(frozen=True)
+class SimSettings:
+    """`[sim]`: settings of `robotdesc sim`.
+
+    Attributes:
+        separation_multiplier: (engine, multiplier) pairs: the drive test's
+            `wheel_separation_multiplier` in that engine, replacing the one of the
+            diff_drive_controller configuration (a skid-steered robot slips differently in
+            each engine; the controllers file holds the value of the simulator it is for).
+    """
+
+    separation_multiplier: tuple[tuple[str, float], ...] = ()
+
+    def separation_multiplier_for(self, engine: str) -> float | None:
+        """The multiplier configured for `engine`, or None."""
+        return dict(self.separation_multiplier).get(engine)
+
+
+@dataclass(frozen=True)
 class Config:
     """The settings that apply to one linted file.
 
@@ -45,6 +63,7 @@ class Config:
         args: default xacro arguments as (name, value) pairs.
         meshes: mesh and inertia settings.
         targets: the descriptions a directory lint checks (empty: discover them).
+        sim: settings of `robotdesc sim`.
     """
 
     path: str | None = None
@@ -58,6 +77,7 @@ class Config:
     args: tuple[tuple[str, str], ...] = ()
     meshes: MeshSettings = field(default_factory=MeshSettings)
     targets: tuple[TargetSpec, ...] = ()
+    sim: SimSettings = field(default_factory=SimSettings)
 
     @property
     def root(self) -> str:

@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 from robotdesc.config.coerce import coerce
 from robotdesc.config.locate import Locator
-from robotdesc.config.schema import KEYS, Config, TargetSpec
+from robotdesc.config.schema import KEYS, Config, SimSettings, TargetSpec
 from robotdesc.diagnostics import Severity
 from robotdesc.linting.select import find_rule, unknown_selectors
 from robotdesc.mesh.settings import MeshSettings
@@ -65,6 +65,7 @@ def config_from_mapping(table: Mapping[str, Any], path: str, *, text: str = "",
         args=_string_table(table.get("args", {}), "args", where),
         meshes=_mesh_settings(table.get("meshes", {}), where),
         targets=_targets(table.get("targets", []), where, tree),
+        sim=_sim_settings(table.get("sim", {}), where),
     )
 
 
@@ -184,6 +185,29 @@ def _mesh_settings(value: Any, where: Locator) -> MeshSettings:
         return MeshSettings(**values)
     except ValueError as exc:
         raise where.error("meshes", f"meshes: {exc}") from None
+
+
+def _sim_settings(value: Any, where: Locator) -> SimSettings:
+    """`[sim]`: `separation-multiplier = { engine = multiplier, ... }` (engines are checked
+    by `robotdesc sim`, which knows them)."""
+    if not isinstance(value, dict):
+        raise where.error("sim", "'sim' must be a table of sim settings")
+    unknown = sorted(set(map(_snake, value)) - {"separation_multiplier"})
+    if unknown:
+        raise where.error(unknown[0], f"unknown key 'sim.{unknown[0]}' (known: "
+                                      "separation-multiplier)")
+    table: Any = next((v for k, v in value.items() if _snake(k) == "separation_multiplier"), {})
+    if not isinstance(table, dict):
+        raise where.error("separation-multiplier", "'sim.separation-multiplier' must be a "
+                          "table of engine = multiplier")
+    pairs = []
+    for engine, raw in table.items():
+        if isinstance(raw, bool) or not isinstance(raw, (int, float)) or not raw > 0 \
+                or raw != raw or raw == float("inf"):
+            raise where.error("separation-multiplier",
+                              f"sim.separation-multiplier.{engine} must be a positive number")
+        pairs.append((str(engine), float(raw)))
+    return SimSettings(tuple(pairs))
 
 
 def _packages(value: Any, where: Locator, tree: str | None) -> tuple[tuple[str, str], ...]:

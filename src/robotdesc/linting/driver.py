@@ -18,6 +18,7 @@ from robotdesc.diagnostics import Diagnostic, Finding, Severity
 from robotdesc.errors import RobotdescError, RuleCrashed
 from robotdesc.expansion import Expanded, ExpandOptions, expand_file
 from robotdesc.linting import rule_cache
+from robotdesc.linting.package_reader import named_controller_files, read_package_files
 from robotdesc.linting.result import LintResult
 from robotdesc.linting.select import is_selected, select_rules
 from robotdesc.linting.suppress import Suppression, apply_suppressions, scan_files, unused_codes
@@ -77,13 +78,17 @@ def lint_file(path: str, config: Config | None = None, *,
     document = SourceDocument(expanded.xml, expanded.source, tuple(expanded.files))
 
     meshes = _mesh_context(rules, robot, target, config, options)
+    package = (read_package_files(target, tuple((p.name, p.path) for p in expanded.packages),
+                                  named_controller_files(expanded.xml))
+               if any("package" in rule.needs for rule in rules) else None)
     diagnostics: list[Diagnostic] = []
     for rule in rules:
         configured = config.options_for(rule.code)
         context = RuleContext(options=configured if configured is not None
                               else rule.default_options(), expansion=facts,
                               meshes=meshes if "meshes" in rule.needs else None,
-                              document=document if "document" in rule.needs else None)
+                              document=document if "document" in rule.needs else None,
+                              package=package if "package" in rule.needs else None)
         try:
             findings = _run_cached(rule, robot, context, expanded, options)
         except RobotdescError:

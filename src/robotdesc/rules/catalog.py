@@ -14,6 +14,7 @@ from robotdesc.rules import (  # noqa: F401
     meta,
     mimic,
     paths,
+    ros2,
     self_collision,
     sim,
     structure,

@@ -21,6 +21,7 @@ if TYPE_CHECKING:
 
     from robotdesc.inertia.mesh_access import MeshAccess  # annotations only: a lint imports
     from robotdesc.model.elements import Robot  # them anyway, a config check need not
+    from robotdesc.rules.package_files import PackageFiles
 
 #: A rule's options: an instance of the frozen dataclass it registered (`rule(options=...)`).
 OptionsT = TypeVar("OptionsT", bound="DataclassInstance")
@@ -70,12 +71,15 @@ class RuleContext:
             `robotdesc.mesh.context.MeshContext` in a lint.
         document: the source document for rules that declare `needs={"document"}`
             (None otherwise).
+        package: the files beside the description (launch, YAML, worlds, hooks) for rules
+            that declare `needs={"package"}` (None otherwise, and outside a lint).
     """
 
     options: DataclassInstance | None = None
     expansion: ExpansionFacts = field(default_factory=ExpansionFacts)
     meshes: MeshAccess | None = None
     document: SourceDocument | None = None
+    package: PackageFiles | None = None
 
     def options_as(self, kind: type[OptionsT]) -> OptionsT:
         """The rule's options as its options dataclass `kind` (its defaults when none were
@@ -145,7 +149,7 @@ _REGISTRY: dict[str, Rule] = {}
 FAMILIES: dict[str, str] = {
     "structure": "S", "joints": "J1", "mimic": "J2", "transmissions": "T", "gazebo": "G",
     "visual": "V", "paths": "P", "xacro": "X", "meta": "RD", "inertia": "I", "meshes": "M",
-    "budget": "B", "sim": "D", "kinematics": "K", "consumers": "C",
+    "budget": "B", "sim": "D", "kinematics": "K", "consumers": "C", "ros2": "R1",
 }
 
 

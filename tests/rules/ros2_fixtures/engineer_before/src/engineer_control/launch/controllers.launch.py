@@ -1,0 +1,51 @@
+"""ROS 2: start the Engineer's controllers in a running controller manager (gz_ros2_control's).
+
+ros2 launch engineer_control controllers.launch.py [main_track_wheels:=56] [flipper_track_wheels:=50]
+
+The controllers file for the wheel counts is written by `controllers_file_for` (the same
+generator as scripts/make_controllers.py); gz_ros2_control reads it through the model's
+xacro argument controllers_file (engineer_gazebo's gz.launch.py passes both).
+Both diff drives listen on /cmd_vel.
+"""
+
+import os
+import sys
+import tempfile
+
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument
+from launch_ros.actions import Node
+
+SCRIPTS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts")
+CONTROLLERS = ("joint_state_broadcaster", "mobile_base_controller", "flipper_tracks_controller",
+               "arm_controller", "flippers_controller", "gripper_controller")
+ARGS = {"main_track_wheels": "56", "flipper_track_wheels": "50", "with_gripper": "true"}
+
+
+def controllers_file_for(main_track_wheels, flipper_track_wheels):
+    """Write the ROS 2 controllers YAML for these wheel counts; its path."""
+    sys.path.insert(0, SCRIPTS)
+    try:
+        import make_controllers
+    finally:
+        sys.path.remove(SCRIPTS)
+    text = make_controllers.ros2_yaml(int(main_track_wheels), int(flipper_track_wheels))
+    handle, path = tempfile.mkstemp(prefix="engineer_controllers_", suffix=".yaml")
+    with os.fdopen(handle, "w", encoding="utf-8") as stream:
+        stream.write(text)
+    return path
+
+
+def spawners(with_gripper="true"):
+    """One controller_manager spawner per controller (the gripper's only with a gripper)."""
+    names = [c for c in CONTROLLERS if with_gripper == "true" or c != "gripper_controller"]
+    return [Node(package="controller_manager", executable="spawner", arguments=[name],
+                 remappings=[(f"/{name}/cmd_vel", "/cmd_vel"), ("~/cmd_vel", "/cmd_vel")],
+                 output="screen")
+            for name in names]
+
+
+def generate_launch_description():
+    return LaunchDescription(
+        [DeclareLaunchArgument(name, default_value=value) for name, value in ARGS.items()]
+        + spawners())
