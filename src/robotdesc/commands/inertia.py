@@ -14,7 +14,9 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from robotdesc.commands.inputs import single_input
+from robotdesc.edit import ExpandedIndex, SourceCache, package_folder
 from robotdesc.expansion import expand_file
+from robotdesc.inertia.patch import build_patch
 from robotdesc.linting.inputs import description_inputs, run_inputs
 from robotdesc.output import check_output, write_output
 
@@ -86,9 +88,8 @@ def run_inertia(ns: argparse.Namespace) -> int:
     else:
         sys.stdout.write(render_table(rows))
     if ns.write:
-        from robotdesc.inertia.patch import build_patch
-
-        patch = build_patch(suggestions)
+        index = ExpandedIndex(expanded.xml, expanded.source, tuple(expanded.files))
+        patch = build_patch(suggestions, index, SourceCache(package_folder(source)))
         write_output(ns.write, patch.diff.encode("utf-8"), inputs)
         for link, reason in patch.skipped:
             sys.stderr.write(f"robotdesc: not patched: link '{link}': {reason}\n")

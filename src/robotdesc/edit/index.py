@@ -1,0 +1,86 @@
+"""The expanded document with each element's provenance, and what a fix changes in it: an
+attribute value of an expanded element. Where the change goes in the sources is locate.py's."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from lxml import etree
+
+from robotdesc.source import PROVENANCE_ATTR, Provenance, Span, decode_provenance
+
+_ELEMENT = re.compile(r"^(link|joint):([^/]+)(?:/(\w+)(?:\[(\d+)\])?)?$")
+
+
+@dataclass(frozen=True)
+class AttributeChange:
+    """Set `attribute` of one expanded element to `value` (adding it when absent).
+
+    Attributes:
+        precise: False when `value` is rounded (a suggested `<inertial>` written to six
+            digits): a written number that rounds to it is left as it is.
+    """
+
+    element: etree._Element  # of the expanded document
+    attribute: str
+    value: str
+    precise: bool = True
+
+
+@dataclass(frozen=True)
+class Refused:
+    """Why a change cannot be written back (names the source FILE:LINE when there is one)."""
+
+    reason: str
+
+
+#: What a fixer returns: the changes, or why there are none.
+Changes = list[AttributeChange] | Refused
+
+
+class ExpandedIndex:
+    """The expanded document with each element's provenance, by link and joint name."""
+
+    def __init__(self, xml: bytes, source: str, files: tuple[str, ...]) -> None:
+        self.root = etree.fromstring(xml, etree.XMLParser(remove_comments=False,
+                                                          resolve_entities=False))
+        self.source, self.files = source, files
+        self.links = {e.get("name"): e for e in self.root.iterchildren("link")}
+        self.joints = {e.get("name"): e for e in self.root.iterchildren("joint")}
+        self._where: dict[etree._Element, Provenance] = {}
+        self.by_span: dict[tuple[str, int, str], list[etree._Element]] = {}
+        for element in self.root.iter(etree.Element):
+            span = self.where(element).span
+            self.by_span.setdefault((span.path, span.line, local(element.tag)), []).append(
+                element)
+
+    def where(self, element: etree._Element) -> Provenance:
+        """The element's own provenance (not an ancestor's)."""
+        found = self._where.get(element)
+        if found is None:
+            value = element.get(PROVENANCE_ATTR)
+            if value and self.files:
+                found = decode_provenance(value, self.files)
+            else:
+                found = Provenance(Span(self.source, element.sourceline or 0))
+            self._where[element] = found
+        return found
+
+    def element(self, name: str) -> etree._Element | None:
+        """The expanded element a diagnostic's element name ("link:a/inertial") points to."""
+        match = _ELEMENT.match(name or "")
+        if match is None:
+            return None
+        kind, owner, child, index = match.groups()
+        parent = (self.links if kind == "link" else self.joints).get(owner)
+        if parent is None or child is None:
+            return parent
+        found = [c for c in parent.iterchildren(child)]
+        position = int(index) if index is not None else 0
+        return found[position] if position < len(found) else None
+
+
+def local(tag: object) -> str:
+    """The local name of an element's tag ("" for comments and processing instructions)."""
+    return tag.rpartition("}")[2] if isinstance(tag, str) else ""
