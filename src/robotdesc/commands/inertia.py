@@ -91,8 +91,11 @@ def run_inertia(ns: argparse.Namespace) -> int:
         index = ExpandedIndex(expanded.xml, expanded.source, tuple(expanded.files))
         patch = build_patch(suggestions, index, SourceCache(package_folder(source)))
         write_output(ns.write, patch.diff.encode("utf-8"), inputs)
-        for link, reason in patch.skipped:
-            sys.stderr.write(f"robotdesc: not patched: link '{link}': {reason}\n")
+        for reason, links in _by_reason(patch.skipped).items():
+            named = ", ".join(f"'{link}'" for link in links[:3])
+            more = f" and {len(links) - 3} more" if len(links) > 3 else ""
+            sys.stderr.write(f"robotdesc: not patched: link{'s' if len(links) > 1 else ''} "
+                             f"{named}{more}: {reason}\n")
         sys.stderr.write(f"robotdesc: wrote {ns.write} ({len(patch.changed)} blocks)\n")
     return 0
 
@@ -104,6 +107,14 @@ def _suggestions(robot: Robot, meshes: MeshAccess, rows: Sequence[InertiaRow],
     from robotdesc.inertia.suggest import select_suggestions
 
     return select_suggestions(robot, meshes, rows, everything=everything)
+
+
+def _by_reason(skipped: Sequence[tuple[str, str]]) -> dict[str, list[str]]:
+    """Reason -> the links left out for it (a macro called 212 times gives one line)."""
+    found: dict[str, list[str]] = {}
+    for link, reason in skipped:
+        found.setdefault(reason, []).append(link)
+    return found
 
 
 def _say_stand_ins(rows: Sequence[InertiaRow], suggested: set[str]) -> None:

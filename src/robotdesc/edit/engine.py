@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 from robotdesc.atomic import write_atomically
 from robotdesc.edit.fix import Edit, Fix
-from robotdesc.edit.locate import inside
+from robotdesc.edit.locate import inside, package_folder
 
 
 @dataclass(frozen=True)
@@ -76,7 +76,7 @@ def _conflicts(fixes: Sequence[Fix]) -> dict[int, str]:
         group: frozenset[int] = frozenset().union(*(e.group for e in edits))
         covered = frozenset(e.target for e in edits)
         sites: frozenset[tuple[str, int]] = frozenset().union(*(e.sites for e in edits))
-        where = f"{os.path.basename(path)}:{edits[0].line}"
+        where = f"{package_relative(path)}:{edits[0].line}"
         reason = ""
         if len({e.replacement for e in edits}) > 1:
             reason = f"fixes ask different values at {where}"
@@ -96,9 +96,15 @@ def _conflicts(fixes: Sequence[Fix]) -> dict[int, str]:
         for start, end, number in items:
             if (start, end) != previous and start < reach:
                 refused.setdefault(number, "overlaps another fix's edit in "
-                                           f"{os.path.basename(path)}")
+                                           f"{package_relative(path)}")
             reach, previous = max(reach, end), (start, end)
     return refused
+
+
+def package_relative(path: str) -> str:
+    """A source file's name relative to its package (as fix reasons name files)."""
+    root = package_folder(path)
+    return os.path.relpath(path, root).replace(os.sep, "/") if inside(path, root) else path
 
 
 def apply_fixes(fixes: Sequence[Fix], raw: Mapping[str, bytes]) -> tuple[FileChange, ...]:

@@ -18,14 +18,14 @@ class AttributeChange:
     """Set `attribute` of one expanded element to `value` (adding it when absent).
 
     Attributes:
-        precise: False when `value` is rounded (a suggested `<inertial>` written to six
-            digits): a written number that rounds to it is left as it is.
+        tolerance: relative, the rule's: a written number this close to the new one is
+            left as written (robotdesc.edit.values.SIX_DIGITS for a suggested `<inertial>`).
     """
 
     element: etree._Element  # of the expanded document
     attribute: str
     value: str
-    precise: bool = True
+    tolerance: float = 1e-9
 
 
 @dataclass(frozen=True)

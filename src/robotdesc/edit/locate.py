@@ -103,7 +103,7 @@ def locate(change: AttributeChange, index: ExpandedIndex, files: SourceCache
             return Edit(span.path, tag.close, tag.close, text, tag.line, members)
         raw = attribute.value
         if "$" not in raw:
-            merged = merged_value(raw, change.value, precise=change.precise)
+            merged = merged_value(raw, change.value, tolerance=change.tolerance)
             if merged is None:
                 return None
             return Edit(source.path, attribute.start, attribute.end, escape_attribute(merged),
@@ -166,7 +166,7 @@ def _property_edit(name: str, change: AttributeChange, source: SourceText, offse
         return Refused(f"computed at {at}: the property '{name}' is local to a macro")
     if value is None or "$" in value.value:
         return Refused(f"computed at {at}: the property '{name}' has no literal value")
-    merged = merged_value(value.value, change.value, precise=change.precise)
+    merged = merged_value(value.value, change.value, tolerance=change.tolerance)
     if merged is None:
         return None
     uses = sum(_uses(t.text, name) for t in texts)

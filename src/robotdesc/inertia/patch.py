@@ -31,7 +31,7 @@ from robotdesc.edit import (
 )
 from robotdesc.edit.index import local
 from robotdesc.edit.source_text import line_indent
-from robotdesc.edit.values import merged_value
+from robotdesc.edit.values import SIX_DIGITS, merged_value
 from robotdesc.inertia.suggest import Suggestion
 
 _INERTIA_ATTRIBUTES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
@@ -76,12 +76,12 @@ def inertial_changes(block: str, declared: etree._Element | None) -> Changes:
                 continue
             current = have.get(name, _DEFAULTS.get((tag, name)))
             if current is None or _differs(current, value):
-                changes.append(AttributeChange(have, name, value, precise=False))
+                changes.append(AttributeChange(have, name, value, tolerance=SIX_DIGITS))
     return changes
 
 
 def _differs(old: str, new: str) -> bool:
-    return merged_value(old, new, precise=False) is not None
+    return merged_value(old, new, tolerance=SIX_DIGITS) is not None
 
 
 def suggestion_fix(item: Suggestion, index: ExpandedIndex, files: SourceCache) -> Fix:
