@@ -71,7 +71,8 @@ def run_inertia(ns: argparse.Namespace) -> int:
     settings = config.meshes if not ns.source else dataclasses.replace(
         config.meshes, inertia_source=ns.source)
     meshes = MeshContext.for_file(robot, source, settings, tuple(options.package_paths),
-                                  tuple(options.package_map))
+                                  tuple(options.package_map), use_cache=options.use_cache,
+                                  cache_dir=options.cache_dir)
     rows = inertia_table(robot, meshes)
     suggestions = _suggestions(robot, meshes, rows, everything=ns.all) \
         if ns.suggest or ns.write else []
