@@ -8,7 +8,8 @@ from pathlib import Path
 import pytest
 from linting.test_fix import make_package
 
-from robotdesc.edit import Edit, Fix, apply_fixes, resolve_conflicts, write_changes
+from robotdesc.edit.engine import apply_fixes, resolve_conflicts, write_changes
+from robotdesc.edit.fix import Edit, Fix
 from robotdesc.edit.values import SIX_DIGITS, merged_value
 from robotdesc.linting.driver import lint_file
 from robotdesc.linting.fix import plan_fixes, write_fixes

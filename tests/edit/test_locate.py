@@ -9,7 +9,7 @@ import pytest
 from linting.test_fix import make_package
 
 from robotdesc.cli import main
-from robotdesc.edit import Applicability
+from robotdesc.edit.fix import Applicability
 from robotdesc.linting.driver import lint_file
 from robotdesc.linting.fix import plan_fixes
 

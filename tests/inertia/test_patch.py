@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from robotdesc.edit import ExpandedIndex, SourceCache
+from robotdesc.edit.index import ExpandedIndex
+from robotdesc.edit.locate import SourceCache
 from robotdesc.inertia.patch import build_patch
 from robotdesc.inertia.suggest import format_inertial, suggest_inertial
 from robotdesc.mesh.primitives import box_properties

@@ -27,7 +27,8 @@ from lxml import etree
 
 from robotdesc.collision.manifest import read_manifest
 from robotdesc.collision.xml_extent import ElementExtent, element_extents
-from robotdesc.edit import Edit, Fix, apply_edits, resolve_conflicts, unified_diff
+from robotdesc.edit.engine import apply_edits, resolve_conflicts, unified_diff
+from robotdesc.edit.fix import Edit, Fix
 from robotdesc.errors import XmlSyntaxError
 from robotdesc.expansion.packages import enclosing_package
 from robotdesc.model.elements import Link, Robot

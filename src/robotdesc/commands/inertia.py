@@ -14,10 +14,11 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from robotdesc.commands.inputs import single_input
-from robotdesc.edit import ExpandedIndex, SourceCache, package_folder
 from robotdesc.expansion import expand_file
-from robotdesc.inertia.patch import build_patch
+from robotdesc.inertia.suggest import denser_than_any_material, select_suggestions
+from robotdesc.inertia.table import inertia_table, render_table
 from robotdesc.linting.inputs import description_inputs, run_inputs
+from robotdesc.mesh.context import MeshContext
 from robotdesc.output import check_output, write_output
 
 if TYPE_CHECKING:
@@ -53,8 +54,6 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser], *,
 
 def run_inertia(ns: argparse.Namespace) -> int:
     """The handler: expand, parse, measure, print; exit 0 (2 on unreadable input)."""
-    from robotdesc.inertia.table import inertia_table, render_table
-    from robotdesc.mesh.context import MeshContext
     from robotdesc.model.parse import parse_urdf
 
     single = single_input(ns, "inertia")
@@ -89,6 +88,11 @@ def run_inertia(ns: argparse.Namespace) -> int:
     else:
         sys.stdout.write(render_table(rows))
     if ns.write:
+        # the edit engine parses the expansion with lxml: only for --write
+        from robotdesc.edit.index import ExpandedIndex
+        from robotdesc.edit.locate import SourceCache, package_folder
+        from robotdesc.inertia.patch import build_patch
+
         index = ExpandedIndex(expanded.xml, expanded.source, tuple(expanded.files))
         patch = build_patch(suggestions, index, SourceCache(package_folder(source)))
         write_output(ns.write, patch.diff.encode("utf-8"), inputs)
@@ -105,7 +109,6 @@ def _suggestions(robot: Robot, meshes: MeshAccess, rows: Sequence[InertiaRow],
                  everything: bool) -> list[Suggestion]:
     """Every link whose tensor is wrong (moments or axes), mm meshes scaled: see
     `robotdesc.inertia.suggest.select_suggestions`."""
-    from robotdesc.inertia.suggest import select_suggestions
 
     return select_suggestions(robot, meshes, rows, everything=everything)
 
@@ -120,7 +123,6 @@ def _by_reason(skipped: Sequence[tuple[str, str]]) -> dict[str, list[str]]:
 
 def _say_stand_ins(rows: Sequence[InertiaRow], suggested: set[str]) -> None:
     """Name the links left without a suggestion because their geometry cannot be the body."""
-    from robotdesc.inertia.suggest import denser_than_any_material
 
     for row in rows:
         if row.link not in suggested and denser_than_any_material(row.density):

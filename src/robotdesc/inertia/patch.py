@@ -16,20 +16,10 @@ from dataclasses import dataclass
 
 from lxml import etree
 
-from robotdesc.edit import (
-    Applicability,
-    AttributeChange,
-    Changes,
-    Edit,
-    ExpandedIndex,
-    Fix,
-    Refused,
-    SourceCache,
-    apply_fixes,
-    changes_fix,
-    resolve_conflicts,
-)
-from robotdesc.edit.index import local
+from robotdesc.edit.engine import apply_fixes, resolve_conflicts
+from robotdesc.edit.fix import Applicability, Edit, Fix
+from robotdesc.edit.index import AttributeChange, Changes, ExpandedIndex, Refused, local
+from robotdesc.edit.locate import SourceCache, changes_fix
 from robotdesc.edit.source_text import line_indent
 from robotdesc.edit.values import SIX_DIGITS, merged_value
 from robotdesc.inertia.suggest import Suggestion

@@ -13,19 +13,10 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
 from robotdesc.diagnostics import Diagnostic
-from robotdesc.edit import (
-    Applicability,
-    Edit,
-    ExpandedIndex,
-    FileChange,
-    Fix,
-    SourceCache,
-    apply_fixes,
-    changes_fix,
-    package_folder,
-    resolve_conflicts,
-    write_changes,
-)
+from robotdesc.edit.engine import FileChange, apply_fixes, resolve_conflicts, write_changes
+from robotdesc.edit.fix import Applicability, Edit, Fix
+from robotdesc.edit.index import ExpandedIndex
+from robotdesc.edit.locate import SourceCache, changes_fix, package_folder
 from robotdesc.linting.fix.changes import CaseHelper, fixer_for
 from robotdesc.linting.result import LintResult
 from robotdesc.rules.fixes import fix_applicability
