@@ -113,8 +113,10 @@ def add_fixable(fixes: Path, code: str, applicability: str) -> None:
         return
     text = fixes.read_text()
     entry = f'    "{code}": Applicability.{applicability.upper()},\n'
-    start = text.index("FIXABLE")
-    end = text.index("}", start)
+    opening = re.search(r"^FIXABLE\b.*\{\n", text, re.M)
+    if opening is None:
+        return
+    start, end = opening.start(), text.index("\n}", opening.end()) + 1
     lines = text[start:end].splitlines(keepends=True)
     body = [line for line in lines[1:] if line.strip()] + [entry]
     body.sort(key=lambda line: line.strip())

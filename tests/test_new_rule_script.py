@@ -39,7 +39,10 @@ def test_a_rule_goes_into_its_familys_module_with_its_fix(tmp_path: Path) -> Non
     assert text.startswith((REPO / "src/robotdesc/rules/joints.py").read_text().rstrip("\n"))
     assert '@rule("J199", "joint-scaffolded", family=FAMILY' in text
     compile(text, "joints.py", "exec")
-    assert '    "J199": Applicability.SAFE,\n' in (rules / "fixes.py").read_text()
+    fixes = (rules / "fixes.py").read_text()
+    assert '    "J107": Applicability.SAFE,    # the same axis at unit length\n    "J199": ' \
+        'Applicability.SAFE,\n    "M102"' in fixes
+    compile(fixes, "fixes.py", "exec")
     assert not (rules / "joint_scaffolded.py").exists()
     several = subprocess.run([sys.executable, str(REPO / "scripts" / "new_rule.py"), "I299",
                               "inertia-scaffolded", "--family", "inertia", "--root",
