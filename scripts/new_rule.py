@@ -9,7 +9,7 @@ tests/rules/fixtures/<family>/<name>.urdf (one finding marked, one clean line) a
 tests/rules/test_<name with underscores>.py, then tells you what is left by hand: the import
 in rules/catalog.py (for a new module) and `python -m robotdesc.rules.docs > docs/rules.md`.
 With --fix safe|unsafe the rule is entered in rules/fixes.py's FIXABLE and the script names
-the fixer to write (robotdesc/linting/fix/changes.py). See docs/contributing.md.
+what the finding must carry (its `changes`). See docs/contributing.md.
 """
 
 from __future__ import annotations
@@ -164,9 +164,10 @@ def main(argv: list[str] | None = None) -> int:
     if created:
         print(f"now add `{module.stem},` to the import list in src/robotdesc/rules/catalog.py")
     if ns.fix:
-        print(f"{ns.code} is {ns.fix} in rules/fixes.py: give the Finding its fix text and write "
-              f"its fixer (Diagnostic -> AttributeChanges) in FIXERS of "
-              f"src/robotdesc/linting/fix/changes.py; the edit engine does the rest")
+        print(f"{ns.code} is {ns.fix} in rules/fixes.py: give each Finding its fix text and its "
+              "changes (diagnostics.ValueChange: element, attribute, new value); the edit "
+              "engine writes them (a FIXERS entry in linting/fix/changes.py only when the rule "
+              "cannot know the value)")
     print("then write the check, and: python -m robotdesc.rules.docs > docs/rules.md")
     return 0
 

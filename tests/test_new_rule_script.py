@@ -34,7 +34,7 @@ def test_a_rule_goes_into_its_familys_module_with_its_fix(tmp_path: Path) -> Non
     done = subprocess.run([sys.executable, str(REPO / "scripts" / "new_rule.py"), "J199",
                            "joint-scaffolded", "--family", "joints", "--fix", "safe",
                            "--root", str(tmp_path)], capture_output=True, text=True, check=True)
-    assert "catalog.py" not in done.stdout and "FIXERS" in done.stdout
+    assert "catalog.py" not in done.stdout and "ValueChange" in done.stdout
     text = (rules / "joints.py").read_text()
     assert text.startswith((REPO / "src/robotdesc/rules/joints.py").read_text().rstrip("\n"))
     assert '@rule("J199", "joint-scaffolded", family=FAMILY' in text

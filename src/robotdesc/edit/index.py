@@ -10,7 +10,8 @@ from lxml import etree
 
 from robotdesc.source import PROVENANCE_ATTR, Provenance, Span, decode_provenance
 
-_ELEMENT = re.compile(r"^(link|joint):([^/]+)(?:/(\w+)(?:\[(\d+)\])?)?$")
+_ELEMENT = re.compile(r"^(link|joint):([^/]+)((?:/\w+(?:\[\d+\])?)*)$")
+_STEP = re.compile(r"/(\w+)(?:\[(\d+)\])?")
 
 
 @dataclass(frozen=True)
@@ -68,17 +69,20 @@ class ExpandedIndex:
         return found
 
     def element(self, name: str) -> etree._Element | None:
-        """The expanded element a diagnostic's element name ("link:a/inertial") points to."""
+        """The expanded element a diagnostic's element name points to: "link:a",
+        "joint:j/limit", "link:a/collision[1]/geometry/mesh" (index 0 when not given)."""
         match = _ELEMENT.match(name or "")
         if match is None:
             return None
-        kind, owner, child, index = match.groups()
-        parent = (self.links if kind == "link" else self.joints).get(owner)
-        if parent is None or child is None:
-            return parent
-        found = [c for c in parent.iterchildren(child)]
-        position = int(index) if index is not None else 0
-        return found[position] if position < len(found) else None
+        kind, owner, path = match.groups()
+        found: etree._Element | None = (self.links if kind == "link" else self.joints).get(owner)
+        for step in _STEP.finditer(path):
+            if found is None:
+                return None
+            children = list(found.iterchildren(step.group(1)))
+            position = int(step.group(2) or 0)
+            found = children[position] if position < len(children) else None
+        return found
 
 
 def local(tag: object) -> str:

@@ -154,7 +154,8 @@ def _diagnostic(rule: Rule, severity: Severity, finding: Finding, fallback: Prov
                 target: str) -> Diagnostic:
     return Diagnostic(code=rule.code, name=rule.name, severity=severity,
                       message=finding.message, where=finding.where or fallback,
-                      element=finding.element, fix=finding.fix, target=target)
+                      element=finding.element, fix=finding.fix, target=target,
+                      changes=finding.changes)
 
 
 def _unused_findings(suppressions: Iterable[Suppression],

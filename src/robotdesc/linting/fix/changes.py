@@ -8,7 +8,6 @@ element it names) and returns the `AttributeChange`s, or a `Refused` saying why 
 from __future__ import annotations
 
 import os
-import re
 import urllib.parse
 from collections.abc import Callable
 from typing import Protocol
@@ -48,25 +47,17 @@ def inertial_changes(diagnostic: Diagnostic, index: ExpandedIndex, _: CaseHelper
     return block_changes(diagnostic.fix or "", index.element(diagnostic.element))
 
 
-def axis_changes(diagnostic: Diagnostic, index: ExpandedIndex, _: CaseHelper | None) -> Changes:
-    """J107: the axis at unit length (the rule's fix text)."""
-    joint = index.element(diagnostic.element)
-    axis = next(iter(joint.iterchildren("axis")), None) if joint is not None else None
-    match = re.search(r'xyz="([^"]*)"', diagnostic.fix or "")
-    if axis is None or match is None:
-        return Refused("the joint's <axis> was not found")
-    return [AttributeChange(axis, "xyz", match.group(1))]
-
-
-def limit_changes(diagnostic: Diagnostic, index: ExpandedIndex, _: CaseHelper | None
-                  ) -> Changes:
-    """J103: lower and upper swapped."""
-    joint = index.element(diagnostic.element)
-    limit = next(iter(joint.iterchildren("limit")), None) if joint is not None else None
-    if limit is None or limit.get("lower") is None or limit.get("upper") is None:
-        return Refused("the joint's <limit> does not give both lower and upper")
-    return [AttributeChange(limit, "lower", limit.get("upper")),
-            AttributeChange(limit, "upper", limit.get("lower"))]
+def requested_changes(diagnostic: Diagnostic, index: ExpandedIndex, _: CaseHelper | None
+                      ) -> Changes:
+    """The changes the rule asked for with its finding (`Finding.changes`)."""
+    found: list[AttributeChange] = []
+    for change in diagnostic.changes:
+        element = index.element(change.element)
+        if element is None:
+            return Refused(f"{change.element} is not in the expanded description")
+        found.append(AttributeChange(element, change.attribute, change.value,
+                                     tolerance=change.tolerance))
+    return found
 
 
 def scale_changes(diagnostic: Diagnostic, index: ExpandedIndex, _: CaseHelper | None
@@ -141,13 +132,16 @@ def enclosing_package(path: str) -> tuple[str, str] | None:
 Fixer = Callable[[Diagnostic, ExpandedIndex, CaseHelper | None], Changes]
 
 FIXERS: dict[str, Fixer] = {
-    "J103": limit_changes, "J107": axis_changes, "M102": case_changes,
+    "M102": case_changes,
     "M108": scale_changes, "P101": package_changes, "P102": package_changes,
 }
 
 
 def fixer_for(diagnostic: Diagnostic) -> Fixer | None:
-    """The fixer of a diagnostic: its rule's, or the inertial one for an `<inertial>` fix."""
+    """The fixer of a diagnostic: the changes its rule asked for, else its rule's fixer
+    here, or the inertial one for an `<inertial>` fix."""
+    if diagnostic.changes:
+        return requested_changes
     found = FIXERS.get(diagnostic.code)
     if found is None and (diagnostic.fix or "").lstrip().startswith("<inertial"):
         return inertial_changes
