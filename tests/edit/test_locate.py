@@ -82,3 +82,12 @@ def test_expression_is_refused_display_only_with_the_relative_line(tmp_path):
     [outcome] = plan_fixes([lint_file(str(path), select=["J107"])]).outcomes
     assert outcome.fix.applicability is Applicability.DISPLAY_ONLY and not outcome.fix.edits
     assert outcome.reason == "computed at urdf/robot.urdf.xacro:5: the expression '0 ${1 + 1} 0'"
+
+
+def test_property_passed_as_an_argument_is_edited_at_the_property(tmp_path):
+    robot = (HEAD + '  <xacro:property name="up" value="0 0 4"/>\n  <link name="base"/>\n'
+             '  <xacro:macro name="w" params="n axis">\n' + _joint("j${n}", "${axis}", "c${n}")
+             + '  </xacro:macro>\n  <xacro:w n="1" axis="${up}"/>\n</robot>\n')
+    path = make_package(tmp_path, robot)
+    main(["lint", str(path), "--fix", "--select", "J107"])
+    assert path.read_text() == robot.replace('value="0 0 4"', 'value="0 0 1"')

@@ -114,8 +114,11 @@ def locate(change: AttributeChange, index: ExpandedIndex, files: SourceCache
         if not parameter or macro is None or depth >= len(chain) \
                 or name not in macro_parameters(macro):
             if parameter:
+                if sites and uses > len(sites):
+                    return Refused(f"computed at {files.at(source.path, tag.line)}: the "
+                                   f"argument is used in {uses} places of its macro")
                 return _property_edit(name, change, source, attribute.start, files, index,
-                                      members, sites)
+                                      members)
             return Refused(f"computed at {files.at(source.path, tag.line)}: the expression "
                            f"'{raw}'")
         if not depth:
@@ -138,8 +141,8 @@ def locate(change: AttributeChange, index: ExpandedIndex, files: SourceCache
 
 
 def _property_edit(name: str, change: AttributeChange, source: SourceText, offset: int,
-                   files: SourceCache, index: ExpandedIndex, members: frozenset[int],
-                   sites: frozenset[tuple[str, int]]) -> Edit | Refused | None:
+                   files: SourceCache, index: ExpandedIndex, members: frozenset[int]
+                   ) -> Edit | Refused | None:
     """The edit of the value of the one global `<xacro:property name=NAME>` a `${NAME}` at
     `offset` of `source` reads."""
     found: list[tuple[SourceText, StartTag]] = []
@@ -171,7 +174,7 @@ def _property_edit(name: str, change: AttributeChange, source: SourceText, offse
         return None
     uses = sum(_uses(t.text, name) for t in texts)
     return Edit(text.path, value.start, value.end, escape_attribute(merged), definition.line,
-                members, sites | {(source.path, offset)}, uses)
+                members, frozenset({(source.path, offset)}), uses)
 
 
 def _value(tag: StartTag, name: str) -> str | None:
