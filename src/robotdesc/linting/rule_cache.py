@@ -116,10 +116,12 @@ def _span_record(span: Span) -> SpanRecord:
 
 def _record(finding: Finding) -> FindingRecord:
     where = finding.where
+    changes: list[list[str | float]] = [[c.element, c.attribute, c.value, c.tolerance]
+                                        for c in finding.changes]
+    spans: list[SpanRecord | list[SpanRecord]] | None = None if where is None else \
+        [_span_record(where.span), [_span_record(s) for s in where.macro_stack]]
     return {"message": finding.message, "element": finding.element, "fix": finding.fix,
-            "changes": [[c.element, c.attribute, c.value, c.tolerance] for c in finding.changes],
-            "where": None if where is None else
-            [_span_record(where.span), [_span_record(s) for s in where.macro_stack]]}
+            "changes": changes, "where": spans}
 
 
 def _points_into(finding: Finding, sources: frozenset[str]) -> bool:
