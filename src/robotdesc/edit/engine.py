@@ -76,16 +76,17 @@ def _conflicts(fixes: Sequence[Fix]) -> dict[int, str]:
         group: frozenset[int] = frozenset().union(*(e.group for e in edits))
         covered = frozenset(e.target for e in edits)
         sites: frozenset[tuple[str, int]] = frozenset().union(*(e.sites for e in edits))
-        where = f"{package_relative(path)}:{edits[0].line}"
         reason = ""
         if len({e.replacement for e in edits}) > 1:
-            reason = f"fixes ask different values at {where}"
+            reason = "fixes ask different values at {where}"
         elif not group <= covered:
-            reason = (f"the text at {where} makes {len(group)} elements, of which "
+            reason = (f"the text at {{where}} makes {len(group)} elements, of which "
                       f"{len(group & covered)} have this fix")
         elif max(e.uses for e in edits) > len(sites):
-            reason = (f"the value at {where} is used in {max(e.uses for e in edits)} "
+            reason = (f"the value at {{where}} is used in {max(e.uses for e in edits)} "
                       "places, not only by these fixes")
+        if reason:  # the package folder is looked up only for a refusal
+            reason = reason.format(where=f"{package_relative(path)}:{edits[0].line}")
         for number, _ in entries if reason else ():
             refused.setdefault(number, reason)
     spans: dict[str, list[tuple[int, int, int]]] = {}
