@@ -2,11 +2,14 @@
 
     python scripts/new_rule.py J111 joint-without-name --family joints --severity warning
 
-writes src/robotdesc/rules/<module>.py (a new module, or appends to the family's module with
---module), tests/rules/fixtures/<family>/<name>.urdf (one finding marked, one clean line) and
-tests/rules/test_<name with underscores>.py, then tells you the two lines to edit by hand:
-the import in rules/catalog.py (for a new module) and `python -m robotdesc.rules.docs >
-docs/rules.md`. See docs/contributing.md.
+appends the rule to its family's module in src/robotdesc/rules/ (the module whose `FAMILY`
+is the family: the one named after it when several are, or the one --module names; a new
+module `<family>.py` when the family has none yet), writes
+tests/rules/fixtures/<family>/<name>.urdf (one finding marked, one clean line) and
+tests/rules/test_<name with underscores>.py, then tells you what is left by hand: the import
+in rules/catalog.py (for a new module) and `python -m robotdesc.rules.docs > docs/rules.md`.
+With --fix safe|unsafe the rule is entered in rules/fixes.py's FIXABLE and the script names
+what the finding must carry (its `changes`). See docs/contributing.md.
 """
 
 from __future__ import annotations
@@ -88,13 +91,48 @@ def test_{function}_stays_silent_on_a_clean_robot() -> None:
 '''
 
 
+def family_module(rules_dir: Path, family: str, chosen: str | None) -> Path | str:
+    """The module the rule goes in, or why none can be chosen."""
+    if chosen:
+        path = rules_dir / f"{chosen}.py"
+        return path if path.is_file() else f"{path} does not exist"
+    declared = re.compile(rf'^FAMILY = "{re.escape(family)}"$', re.M)
+    found = sorted(p for p in rules_dir.glob("*.py") if declared.search(p.read_text()))
+    named = [p for p in found if p.stem == family]
+    if named or len(found) == 1:
+        return (named or found)[0]
+    if found:
+        return (f"the family {family} has several modules ({', '.join(p.stem for p in found)}): "
+                "pass --module")
+    return rules_dir / f"{family}.py"
+
+
+def add_fixable(fixes: Path, code: str, applicability: str) -> None:
+    """Enter the rule in FIXABLE (rules/fixes.py), keeping the codes in order."""
+    if not fixes.is_file():
+        return
+    text = fixes.read_text()
+    entry = f'    "{code}": Applicability.{applicability.upper()},\n'
+    opening = re.search(r"^FIXABLE\b.*\{\n", text, re.M)
+    if opening is None:
+        return
+    start, end = opening.start(), text.index("\n}", opening.end()) + 1
+    lines = text[start:end].splitlines(keepends=True)
+    body = [line for line in lines[1:] if line.strip()] + [entry]
+    body.sort(key=lambda line: line.strip())
+    fixes.write_text(text[:start] + lines[0] + "".join(body) + text[end:])
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("code", help="the rule's code, e.g. J111 (its prefix names the family)")
     parser.add_argument("name", help="kebab-case name, e.g. joint-without-name")
     parser.add_argument("--family", required=True, help="a family of rules.registry.FAMILIES")
     parser.add_argument("--severity", choices=("error", "warning", "info"), default="warning")
-    parser.add_argument("--module", help="an existing rule module to append to (default: new)")
+    parser.add_argument("--module", help="the rule module to append to (default: the "
+                                         "family's module)")
+    parser.add_argument("--fix", choices=("safe", "unsafe"),
+                        help="the rule's findings carry a fix of this applicability")
     parser.add_argument("--root", type=Path, default=ROOT, help="the repository (for tests)")
     ns = parser.parse_args(argv)
     if not re.fullmatch(r"[A-Z]{1,3}\d{3}", ns.code) or \
@@ -104,23 +142,32 @@ def main(argv: list[str] | None = None) -> int:
     values = {"code": ns.code, "name": ns.name, "function": function, "family": ns.family,
               "severity": ns.severity.upper(), "prefix": ns.code.rstrip("0123456789")}
     rules_dir = ns.root / "src" / "robotdesc" / "rules"
-    module = rules_dir / f"{ns.module or function}.py"
-    if ns.module:
-        if not module.is_file():
-            parser.error(f"{module} does not exist")
-        module.write_text(module.read_text().rstrip("\n") + "\n" + RULE.format(**values))
-    else:
-        if module.exists():
-            parser.error(f"{module} exists: pass --module {module.stem}")
+    module = family_module(rules_dir, ns.family, ns.module)
+    if isinstance(module, str):
+        parser.error(module)
+    created = not module.is_file()
+    if created:
         module.write_text(MODULE_HEAD.format(**values) + RULE.format(**values))
+    else:
+        text = module.read_text()
+        if f'@rule("{ns.code}"' in text:
+            parser.error(f"{module} already has {ns.code}")
+        module.write_text(text.rstrip("\n") + "\n" + RULE.format(**values))
+    if ns.fix:
+        add_fixable(rules_dir / "fixes.py", ns.code, ns.fix)
     fixture = ns.root / "tests" / "rules" / "fixtures" / ns.family / f"{function}.urdf"
     fixture.parent.mkdir(parents=True, exist_ok=True)
     fixture.write_text(FIXTURE.format(**values))
     test = ns.root / "tests" / "rules" / f"test_{function}.py"
     test.write_text(TEST.format(**values))
     print(f"wrote {module}\nwrote {fixture}\nwrote {test}")
-    if not ns.module:
-        print(f"now add `{function},` to the import list in src/robotdesc/rules/catalog.py")
+    if created:
+        print(f"now add `{module.stem},` to the import list in src/robotdesc/rules/catalog.py")
+    if ns.fix:
+        print(f"{ns.code} is {ns.fix} in rules/fixes.py: give each Finding its fix text and its "
+              "changes (diagnostics.ValueChange: element, attribute, new value); the edit "
+              "engine writes them (a FIXERS entry in linting/fix/changes.py only when the rule "
+              "cannot know the value)")
     print("then write the check, and: python -m robotdesc.rules.docs > docs/rules.md")
     return 0
 

@@ -1,5 +1,7 @@
 """Where robotdesc keeps its caches, and how an entry is read and written safely.
 
+One switch turns every cache off for a run: `cache_folder(use_cache=False)` (what
+`--no-cache` asks) is None, and so is the root when the environment says so.
 The root: `$ROBOTDESC_CACHE_DIR` if set (an empty value, "0", "off", "none", "false" or
 "no" turns every cache off), else `$XDG_CACHE_HOME/robotdesc`, else `~/.cache/robotdesc`.
 
@@ -39,6 +41,20 @@ def cache_root(env: Mapping[str, str] | None = None) -> Path | None:
 def default_cache_dir() -> Path | None:
     """The cache root of this process's environment (None: caches are off)."""
     return cache_root()
+
+
+def cache_folder(use_cache: bool = True,
+                 explicit: str | os.PathLike[str] | None = None) -> Path | None:
+    """The one cache switch: the folder every cache (expansion, meshes, rules, collision)
+    reads and writes under, or None when caches are off (`--no-cache`, i.e. `use_cache`
+    False, or `ROBOTDESC_CACHE_DIR=off`).
+
+    Args:
+        explicit: a folder given for this run (ExpandOptions.cache_dir), else the default.
+    """
+    if not use_cache:
+        return None
+    return Path(explicit) if explicit else default_cache_dir()
 
 
 def read_regular_file(path: str | os.PathLike[str], max_bytes: int) -> bytes | None:

@@ -27,6 +27,24 @@ class Severity(enum.IntEnum):
 
 
 @dataclass(frozen=True)
+class ValueChange:
+    """A fix's request, made by the rule where it finds the problem: set `attribute` of the
+    expanded element named `element` to `value`. The edit engine (robotdesc.edit) finds
+    where the value is written in the sources, from the provenance the expansion recorded.
+
+    Attributes:
+        element: the element's line-free name, the diagnostic's or a path below it, e.g.
+            "joint:elbow/limit", "link:arm/collision[0]/geometry/mesh".
+        tolerance: relative; a written number this close to the new one keeps its text.
+    """
+
+    element: str
+    attribute: str
+    value: str
+    tolerance: float = 1e-9
+
+
+@dataclass(frozen=True)
 class Finding:
     """What a rule's check yields: the rule fills in code, name and severity.
 
@@ -36,12 +54,15 @@ class Finding:
             that have no better place; the robot's own provenance is used then).
         element: a stable, line-free name of the element, e.g. "joint:shoulder".
         fix: suggested replacement text (for example a corrected `<inertial>` block).
+        changes: the fix as data: the attribute values to set (`lint --fix` applies them
+            when the rule's code is in rules/fixes.py's FIXABLE).
     """
 
     message: str
     where: Provenance | None = None
     element: str = ""
     fix: str | None = None
+    changes: tuple[ValueChange, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -57,6 +78,7 @@ class Diagnostic:
         element: a stable, line-free name of the element, e.g. "joint:shoulder".
         fix: suggested replacement text, if any.
         target: the linted file (the top-level xacro/URDF).
+        changes: the fix as data (the rule's `Finding.changes`).
     """
 
     code: str
@@ -67,6 +89,7 @@ class Diagnostic:
     element: str = ""
     fix: str | None = None
     target: str = ""
+    changes: tuple[ValueChange, ...] = ()
 
     def sort_key(self) -> tuple[str, int, str, str]:
         span = self.where.span if self.where else None

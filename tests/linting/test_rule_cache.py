@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+import json
 import os
 
-from robotdesc.diagnostics import Finding
+from robotdesc.diagnostics import Finding, ValueChange
 from robotdesc.linting import rule_cache
 from robotdesc.rules.catalog import get_rule
 from robotdesc.source import Provenance, Span
@@ -76,3 +77,9 @@ def test_a_copy_of_a_urdf_gets_findings_that_point_into_the_copy(tmp_path):
         found = lint_file(str(path), expand_options=options, select=["K201"]).diagnostics
         assert [d.code for d in found] == ["K201"]
         assert all(d.where.span.path == str(path) for d in found), found
+
+
+def test_a_findings_fix_as_data_survives_the_cache() -> None:
+    finding = Finding("m", None, "joint:j", '<axis xyz="0 0 1"/>',
+                      (ValueChange("joint:j/axis", "xyz", "0 0 1", 5e-6),))
+    assert rule_cache._finding(json.loads(json.dumps(rule_cache._record(finding)))) == finding

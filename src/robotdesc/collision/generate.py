@@ -28,6 +28,7 @@ from robotdesc.collision.sources import (
 from robotdesc.collision.worker import TaskFailure, default_jobs, run_tasks, start_workers_early
 from robotdesc.digest import file_digest
 from robotdesc.errors import InputError, UnknownLinkError
+from robotdesc.mesh.cache import MeshCache, default_cache_dir
 from robotdesc.mesh.locate import MeshLocator
 from robotdesc.model.elements import Robot
 
@@ -178,7 +179,6 @@ def plan_links(robot: Robot, options: CollisionOptions, package_paths: Sequence[
     Raises:
         UnknownLinkError: a link named in `links` has no geometry of `options.source`.
     """
-    from robotdesc.mesh.cache import MeshCache, default_cache_dir
 
     found = link_sources(robot, options.source,
                          MeshLocator.for_robot(robot, package_paths, package_map,

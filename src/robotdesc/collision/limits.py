@@ -10,10 +10,8 @@ its hull); Bullet accepts both, but recommends small hulls (about 100 vertices) 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
-if TYPE_CHECKING:
-    from robotdesc.collision.result import Finding, Part
+from robotdesc.collision.result import Finding, MeshPart, Part
 
 
 @dataclass(frozen=True)
@@ -47,7 +45,6 @@ ENGINE_LIMITS: dict[str, EngineLimits] = {
 
 def limit_findings(parts: tuple[Part, ...], limits: EngineLimits) -> tuple[Finding, ...]:
     """Findings (warnings) for every limit a link's geometry exceeds."""
-    from robotdesc.collision.result import Finding, MeshPart
 
     meshes = [p for p in parts if isinstance(p, MeshPart)]
     hulls = [p for p in meshes if p.convex]

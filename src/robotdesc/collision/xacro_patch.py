@@ -16,7 +16,6 @@ be read as UTF-8 XML.
 
 from __future__ import annotations
 
-import difflib
 import os
 import re
 import textwrap
@@ -28,6 +27,8 @@ from lxml import etree
 
 from robotdesc.collision.manifest import read_manifest
 from robotdesc.collision.xml_extent import ElementExtent, element_extents
+from robotdesc.edit.engine import apply_edits, resolve_conflicts, unified_diff
+from robotdesc.edit.fix import Edit, Fix
 from robotdesc.errors import XmlSyntaxError
 from robotdesc.expansion.packages import enclosing_package
 from robotdesc.model.elements import Link, Robot
@@ -86,13 +87,16 @@ def build_patch(robot: Robot, links: Sequence[str], render: Render, out_dir: str
     planner = _Planner(robot, render, out_dir)
     edits: dict[str, list[_Edit]] = {}
     patched, skipped, literal = [], [], []
+    planned_links: list[tuple[str, list[_Edit]]] = []
     for name in links:
         try:
-            planned = planner.link_edits(name)
+            planned_links.append((name, planner.link_edits(name)))
         except _Unpatchable as why:
             skipped.append(Skipped(name, str(why)))
-            continue
-        if any(_overlaps(edits.get(edit.path, ()), edit) for edit in planned):
+    fixes = resolve_conflicts([Fix(tuple(Edit(e.path, e.start, e.end, e.text, e.line)
+                                         for e in planned)) for _, planned in planned_links])
+    for (name, planned), fix in zip(planned_links, fixes):
+        if not fix.applicable:
             skipped.append(Skipped(name, "its text overlaps another link's change"))
             continue
         for edit in planned:
@@ -106,7 +110,10 @@ def build_patch(robot: Robot, links: Sequence[str], render: Render, out_dir: str
     diff = []
     for path in files:
         text = planner.source(path).text
-        diff += _unified(_short(path, root), text, _apply(text, edits[path]))
+        change = apply_edits(path, text.encode("utf-8"),
+                             {(e.start, e.end): e.text for e in edits[path]})
+        if change is not None:
+            diff.append(unified_diff(_short(path, root), text, change.after.decode("utf-8")))
     header = _header(out_dir, patch_name, root, files, patched, skipped, literal,
                      _escaping(files, out_dir) if relative_meshes else [])
     return XacroPatch(("".join(header + diff)).encode("utf-8"), root, files, tuple(patched),
@@ -130,7 +137,8 @@ class _Source:
 
 @dataclass(frozen=True)
 class _Edit:
-    """Replace text[start:end] of the file at `path` by `text`."""
+    """Replace text[start:end] of the file at `path` by `text` (given to the one edit
+    engine, robotdesc.edit, as an `Edit`; `expressions` is for the patch's header)."""
 
     path: str
     start: int
@@ -312,33 +320,6 @@ def _whole_lines(text: str, start: int, end: int) -> tuple[int, int]:
 
 def _has_expressions(text: str) -> bool:
     return "${" in text or "$(" in text
-
-
-def _overlaps(done: Sequence[_Edit], edit: _Edit) -> bool:
-    return any(edit.start < other.end and other.start < edit.end or
-               (edit.start == edit.end and other.start < edit.start < other.end) or
-               (other.start == other.end and edit.start < other.start < edit.end)
-               for other in done)
-
-
-def _apply(text: str, edits: Sequence[_Edit]) -> str:
-    for edit in sorted(edits, key=lambda e: (e.start, e.end), reverse=True):
-        text = text[:edit.start] + edit.text + text[edit.end:]
-    return text
-
-
-def _lines(text: str) -> list[str]:
-    """Lines as `patch` and git see them: split at LF only, ends kept."""
-    parts = text.split("\n")
-    return [p + "\n" for p in parts[:-1]] + ([parts[-1]] if parts[-1] else [])
-
-
-def _unified(relative: str, old: str, new: str) -> list[str]:
-    out = []
-    for line in difflib.unified_diff(_lines(old), _lines(new), f"a/{relative}",
-                                     f"b/{relative}", n=3):
-        out.append(line if line.endswith("\n") else line + "\n\\ No newline at end of file\n")
-    return out
 
 
 # --- paths and the header -----------------------------------------------------------------

@@ -15,7 +15,10 @@ from typing import TYPE_CHECKING
 
 from robotdesc.commands.inputs import single_input
 from robotdesc.expansion import expand_file
+from robotdesc.inertia.suggest import denser_than_any_material, select_suggestions
+from robotdesc.inertia.table import inertia_table, render_table
 from robotdesc.linting.inputs import description_inputs, run_inputs
+from robotdesc.mesh.context import MeshContext
 from robotdesc.output import check_output, write_output
 
 if TYPE_CHECKING:
@@ -51,8 +54,6 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser], *,
 
 def run_inertia(ns: argparse.Namespace) -> int:
     """The handler: expand, parse, measure, print; exit 0 (2 on unreadable input)."""
-    from robotdesc.inertia.table import inertia_table, render_table
-    from robotdesc.mesh.context import MeshContext
     from robotdesc.model.parse import parse_urdf
 
     single = single_input(ns, "inertia")
@@ -69,7 +70,8 @@ def run_inertia(ns: argparse.Namespace) -> int:
     settings = config.meshes if not ns.source else dataclasses.replace(
         config.meshes, inertia_source=ns.source)
     meshes = MeshContext.for_file(robot, source, settings, tuple(options.package_paths),
-                                  tuple(options.package_map))
+                                  tuple(options.package_map), use_cache=options.use_cache,
+                                  cache_dir=options.cache_dir)
     rows = inertia_table(robot, meshes)
     suggestions = _suggestions(robot, meshes, rows, everything=ns.all) \
         if ns.suggest or ns.write else []
@@ -86,12 +88,19 @@ def run_inertia(ns: argparse.Namespace) -> int:
     else:
         sys.stdout.write(render_table(rows))
     if ns.write:
+        # the edit engine parses the expansion with lxml: only for --write
+        from robotdesc.edit.index import ExpandedIndex
+        from robotdesc.edit.locate import SourceCache, package_folder
         from robotdesc.inertia.patch import build_patch
 
-        patch = build_patch(suggestions)
+        index = ExpandedIndex(expanded.xml, expanded.source, tuple(expanded.files))
+        patch = build_patch(suggestions, index, SourceCache(package_folder(source)))
         write_output(ns.write, patch.diff.encode("utf-8"), inputs)
-        for link, reason in patch.skipped:
-            sys.stderr.write(f"robotdesc: not patched: link '{link}': {reason}\n")
+        for reason, links in _by_reason(patch.skipped).items():
+            named = ", ".join(f"'{link}'" for link in links[:3])
+            more = f" and {len(links) - 3} more" if len(links) > 3 else ""
+            sys.stderr.write(f"robotdesc: not patched: link{'s' if len(links) > 1 else ''} "
+                             f"{named}{more}: {reason}\n")
         sys.stderr.write(f"robotdesc: wrote {ns.write} ({len(patch.changed)} blocks)\n")
     return 0
 
@@ -100,14 +109,20 @@ def _suggestions(robot: Robot, meshes: MeshAccess, rows: Sequence[InertiaRow],
                  everything: bool) -> list[Suggestion]:
     """Every link whose tensor is wrong (moments or axes), mm meshes scaled: see
     `robotdesc.inertia.suggest.select_suggestions`."""
-    from robotdesc.inertia.suggest import select_suggestions
 
     return select_suggestions(robot, meshes, rows, everything=everything)
 
 
+def _by_reason(skipped: Sequence[tuple[str, str]]) -> dict[str, list[str]]:
+    """Reason -> the links left out for it (a macro called 212 times gives one line)."""
+    found: dict[str, list[str]] = {}
+    for link, reason in skipped:
+        found.setdefault(reason, []).append(link)
+    return found
+
+
 def _say_stand_ins(rows: Sequence[InertiaRow], suggested: set[str]) -> None:
     """Name the links left without a suggestion because their geometry cannot be the body."""
-    from robotdesc.inertia.suggest import denser_than_any_material
 
     for row in rows:
         if row.link not in suggested and denser_than_any_material(row.density):

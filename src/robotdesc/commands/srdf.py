@@ -12,6 +12,7 @@ import os
 import sys
 from typing import Any
 
+from robotdesc.commands.info import load_robot
 from robotdesc.errors import UsageError
 from robotdesc.kinematics.optional import import_pinocchio
 from robotdesc.output import check_output, write_output
@@ -56,7 +57,6 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
 
 def run_srdf(ns: argparse.Namespace) -> int:
     """The handler: expand, compute the matrix, write SRDF and report; exit 0 (2 on bad input)."""
-    from robotdesc.commands.info import load_robot
     from robotdesc.srdf import compute_matrix, render_report, render_srdf
 
     import_pinocchio("robotdesc srdf")

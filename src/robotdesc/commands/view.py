@@ -16,6 +16,7 @@ from typing import Any
 from robotdesc.commands.inputs import single_input
 from robotdesc.errors import UsageError
 from robotdesc.expansion import expand_file
+from robotdesc.linting.driver import lint_file
 from robotdesc.linting.inputs import description_inputs, run_inputs
 from robotdesc.output import check_output, write_output
 from robotdesc.view.forward import parse_assignments
@@ -69,8 +70,6 @@ def load_target(ns: argparse.Namespace, lint: bool = True) -> tuple[Any, Any, An
     if ns.max_faces is not None and ns.max_faces < 1:
         raise UsageError("--max-faces must be at least 1")
     if lint:
-        from robotdesc.linting.driver import lint_file  # the rules: only when run
-
         result = lint_file(source, single.config, args=single.cli_args or None,
                            expand_options=options)
         robot, expanded = result.robot, result.expanded

@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Mapping
 
 from robotdesc import errors
-from robotdesc.cache_dir import default_cache_dir
+from robotdesc.cache_dir import cache_folder
 from robotdesc.digest import bytes_digest
 from robotdesc.expansion import cache
 from robotdesc.expansion.answer import check_expanded, max_chain
@@ -48,7 +48,8 @@ class ExpandOptions:
         max_macro_depth: nested macro calls allowed before the expansion is stopped.
         env_allowlist: environment variables visible to `$(env)`/`$(optenv)` in safe mode,
             in addition to DEFAULT_ENV_ALLOWLIST.
-        use_cache: reuse a cached expansion when no input changed.
+        use_cache: the one cache switch of a run (`--no-cache` sets it False): the
+            expansion, mesh, rule and collision caches read and write nothing when off.
         cache_dir: the cache root (default: robotdesc.cache_dir.default_cache_dir()).
         unchecked_args: argument names not reported when no `<xacro:arg>` declares them
             (the config's default arguments, which apply to every target).
@@ -154,10 +155,9 @@ def expand_file(path: str | Path, args: Mapping[str, str] | None = None, *,
                                                       options.package_map)
     names = DEFAULT_ENV_ALLOWLIST + options.env_allowlist
     env = dict(os.environ) if options.trusted else {n: os.environ[n] for n in names if n in os.environ}
-    cache_root = Path(options.cache_dir) if options.cache_dir else None
+    cache_root = cache_folder(options.use_cache, options.cache_dir)
     key = None
-    if options.use_cache:
-        cache_root = cache_root or default_cache_dir()
+    if cache_root is not None:
         key = cache.cache_key({"file": str(path), "digest": bytes_digest(data),
                                "args": sorted(args.items()),
                                "resolver": resolver.__dict__, "trusted": options.trusted,

@@ -1,21 +1,31 @@
-"""A unified diff that replaces declared `<inertial>` blocks (or adds missing ones) in the
-xacro/URDF sources with suggested ones. The user's files are never written: the diff is.
+"""The edits that put suggested `<inertial>` blocks into the xacro/URDF sources, through the
+one edit engine (robotdesc.edit): `inertia --write` diffs them, `lint --fix --unsafe-fixes`
+writes the same edits for the inertia rules' findings.
 
-A block written inside a xacro macro, or one whose text holds `${...}` expressions, is not
-patched (its text serves several links or computes its values); it is listed as skipped.
+A declared `<inertial>` is changed attribute by attribute where its values are written (the
+literal, in a macro body when every call gets the same value, the call site's argument, or
+the one property that carries it); a number equal to the suggestion within the six digits the
+suggestion is written with keeps its text. A link without an `<inertial>` gets the block
+after its start tag. What cannot be written is listed with the reason.
 """
 
 from __future__ import annotations
 
-import difflib
-import os
-import re
 from collections.abc import Iterable
 from dataclasses import dataclass
 
+from lxml import etree
+
+from robotdesc.edit.engine import apply_fixes, resolve_conflicts
+from robotdesc.edit.fix import Applicability, Edit, Fix
+from robotdesc.edit.index import AttributeChange, Changes, ExpandedIndex, Refused, local
+from robotdesc.edit.locate import SourceCache, changes_fix
+from robotdesc.edit.source_text import line_indent
+from robotdesc.edit.values import SIX_DIGITS, merged_value
 from robotdesc.inertia.suggest import Suggestion
 
-_END = re.compile(r"</inertial\s*>")
+_INERTIA_ATTRIBUTES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+_DEFAULTS = {("origin", "xyz"): "0 0 0", ("origin", "rpy"): "0 0 0"}
 
 
 @dataclass(frozen=True)
@@ -33,93 +43,93 @@ class Patch:
     skipped: tuple[tuple[str, str], ...]
 
 
-def build_patch(suggestions: Iterable[Suggestion], relative_to: str | None = None) -> Patch:
-    """Apply the suggestions to copies of their source files and diff the copies.
+def inertial_changes(block: str, declared: etree._Element | None) -> Changes:
+    """The attribute changes that turn a declared `<inertial>` (expanded element) into the
+    suggested `block`; numbers compared within the block's written precision."""
+    try:
+        wanted_root = etree.fromstring(block)
+    except etree.XMLSyntaxError:
+        return Refused("the suggested <inertial> is not XML")
+    if declared is None or local(declared.tag) != "inertial":
+        return Refused("the declared <inertial> was not found")
+    changes: list[AttributeChange] = []
+    for wanted in wanted_root.iterchildren(etree.Element):
+        tag = local(wanted.tag)
+        have = next(iter(declared.iterchildren(tag)), None)
+        names = _INERTIA_ATTRIBUTES if tag == "inertia" else tuple(wanted.attrib)
+        for name in names:
+            value = wanted.get(name, "0")
+            if have is None:
+                default = _DEFAULTS.get((tag, name))
+                if default is None or _differs(default, value):
+                    return Refused(f"the declared <inertial> has no <{tag}> to edit")
+                continue
+            current = have.get(name, _DEFAULTS.get((tag, name)))
+            if current is None or _differs(current, value):
+                changes.append(AttributeChange(have, name, value, tolerance=SIX_DIGITS))
+    return changes
+
+
+def _differs(old: str, new: str) -> bool:
+    return merged_value(old, new, tolerance=SIX_DIGITS) is not None
+
+
+def suggestion_fix(item: Suggestion, index: ExpandedIndex, files: SourceCache) -> Fix:
+    """The edits that write one suggestion (unsafe: it changes what the robot is)."""
+    declared = index.element(f"link:{item.link}/inertial")
+    if declared is None:
+        link = index.element(f"link:{item.link}")
+        if link is None:
+            return Fix.refused(f"link '{item.link}' is not in the expanded description")
+        found = insert_child(link, item.block, index, files)
+        if isinstance(found, Refused):
+            return Fix.refused(found.reason)
+        return Fix((found,), Applicability.UNSAFE)
+    return changes_fix(inertial_changes(item.block, declared), index, files,
+                       Applicability.UNSAFE)
+
+
+def insert_child(parent: etree._Element, block: str, index: ExpandedIndex,
+                 files: SourceCache) -> Edit | Refused:
+    """Insert `block` (an element's text) as the first child of the literal start tag that
+    made `parent` (a self-closing tag is opened and closed)."""
+    span = index.where(parent).span
+    source = files.get(span.path)
+    if isinstance(source, str):
+        return Refused(source)
+    name = local(parent.tag)
+    tags = source.at_line(span.line, name)
+    if len(tags) != 1:
+        return Refused(f"no single <{name}> written at {files.at(span.path, span.line)}")
+    tag = tags[0]
+    group = frozenset(id(e) for e in index.by_span.get((span.path, span.line, name), []))
+    newline = "\r\n" if "\r\n" in source.text else "\n"
+    indent = line_indent(source.text, tag.start)
+    inner = newline.join(indent + "  " + line for line in block.splitlines())
+    if tag.element_end == tag.end:  # <link .../>
+        text = f">{newline}{inner}{newline}{indent}</{tag.name}>"
+        return Edit(source.path, tag.close, tag.end, text, tag.line, group, target=id(parent))
+    return Edit(source.path, tag.end, tag.end, newline + inner, tag.line, group,
+                target=id(parent))
+
+
+def build_patch(suggestions: Iterable[Suggestion], index: ExpandedIndex, files: SourceCache,
+                relative_to: str | None = None) -> Patch:
+    """The unified diff of every suggestion's edits (the sources are not written).
 
     Args:
-        suggestions: the blocks to write.
+        index: the expanded description the suggestions were made for.
+        files: the sources (read once; edits go only inside its package).
         relative_to: directory the diff's file names are relative to (default: cwd).
     """
-    base = os.path.abspath(relative_to or os.getcwd())
-    edits: dict[str, list[tuple[int, int, list[str], str]]] = {}
-    skipped: list[tuple[str, str]] = []
-    for item in suggestions:
-        planned = _plan(item)
-        if isinstance(planned, str):
-            skipped.append((item.link, planned))
-            continue
-        path, start, end, lines = planned
-        edits.setdefault(path, []).append((start, end, lines, item.link))
-    chunks: list[str] = []
+    items = list(suggestions)
+    fixes = resolve_conflicts([suggestion_fix(item, index, files) for item in items])
     changed: list[tuple[str, str]] = []
-    for path in sorted(edits):
-        original = _read_lines(path)
-        updated = list(original)
-        taken: list[tuple[int, int]] = []
-        for start, end, lines, link in sorted(edits[path], key=lambda e: -e[0]):
-            if any(start < b and a < end for a, b in taken):
-                skipped.append((link, "overlaps another edit"))
-                continue
-            updated[start:end] = lines
-            taken.append((start, end))
-            changed.append((path, link))
-        name = os.path.relpath(path, base) if _inside(path, base) else path
-        chunks.extend(difflib.unified_diff(original, updated, f"a/{name}", f"b/{name}"))
-    return Patch("".join(chunks), tuple(changed), tuple(skipped))
-
-
-def _plan(item: Suggestion) -> tuple[str, int, int, list[str]] | str:
-    """(file, first line index, end index, replacement lines) or why not."""
-    if item.in_macro:
-        return "the <inertial> is written inside a xacro macro; edit the macro's arguments"
-    span = item.replaces or item.link_span
-    if span is None or not span.line or not os.path.isfile(span.path):
-        return "its source location is unknown"
-    lines = _read_lines(span.path)
-    index = span.line - 1
-    if index >= len(lines):
-        return f"line {span.line} is past the end of {span.path}"
-    indent = lines[index][:len(lines[index]) - len(lines[index].lstrip())]
-    if item.replaces is not None:
-        if "<inertial" not in lines[index]:
-            return f"no <inertial> at {span.path}:{span.line}"
-        end = index
-        if not re.search(r"<inertial[^>]*/>", lines[index]):
-            while not _END.search(lines[end]):
-                end += 1
-                if end >= len(lines):
-                    return f"no </inertial> after {span.path}:{span.line}"
-        if not lines[index].lstrip().startswith("<inertial") or not (
-                lines[end].rstrip().endswith("</inertial>") or lines[end].rstrip().endswith("/>")):
-            return "the <inertial> shares its lines with other elements"
-        block = "".join(lines[index:end + 1])
-        if "${" in block or "$(" in block:
-            return "the declared <inertial> computes its values with xacro expressions"
-        return span.path, index, end + 1, _indent(item.block, indent)
-    line = lines[index]
-    if "<link" not in line:
-        return f"no <link> at {span.path}:{span.line}"
-    inner = indent + "  "
-    if line.rstrip().endswith("/>"):
-        opened = re.sub(r"\s*/>\s*$", ">", line.rstrip()) + "\n"
-        return span.path, index, index + 1, [opened, *_indent(item.block, inner),
-                                             f"{indent}</link>\n"]
-    if not line.rstrip().endswith(">"):
-        return f"the <link> tag at {span.path}:{span.line} spans several lines"
-    return span.path, index + 1, index + 1, _indent(item.block, inner)
-
-
-def _indent(block: str, indent: str) -> list[str]:
-    return [f"{indent}{line}\n" for line in block.splitlines()]
-
-
-def _read_lines(path: str) -> list[str]:
-    with open(path, encoding="utf-8") as handle:
-        return handle.readlines()
-
-
-def _inside(path: str, base: str) -> bool:
-    try:
-        return os.path.commonpath([os.path.abspath(path), base]) == base
-    except ValueError:
-        return False
+    skipped: list[tuple[str, str]] = []
+    for item, fix in zip(items, fixes):
+        if fix.applicable:
+            changed += [(edit.path, item.link) for edit in fix.edits[:1]]
+        else:
+            skipped.append((item.link, fix.reason))
+    diff = "".join(change.diff(relative_to) for change in apply_fixes(fixes, files.raw))
+    return Patch(diff, tuple(changed), tuple(skipped))

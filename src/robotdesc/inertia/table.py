@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from robotdesc.inertia.compare import compare_inertia
 from robotdesc.inertia.mesh_access import MeshAccess
 from robotdesc.model.elements import Robot
-from robotdesc.spatial import Vec3
+from robotdesc.spatial import Vec3, principal_moments
 
 #: A row as JSON: numbers, strings, lists of numbers, lists of strings, or null.
 JsonValue = float | str | list[float] | list[str] | None
@@ -89,7 +89,6 @@ class InertiaTable:
 
 def inertia_table(robot: Robot, meshes: MeshAccess, tolerance: float = 0.5) -> list[InertiaRow]:
     """One row per link that declares an inertial or has geometry."""
-    from robotdesc.spatial import principal_moments
 
     rows: list[InertiaRow] = []
     for link in robot.links:

@@ -10,9 +10,8 @@ import fnmatch
 import logging
 import os
 from collections.abc import Iterable, Mapping, Sequence
-from pathlib import Path
 
-from robotdesc.cache_dir import default_cache_dir
+from robotdesc.cache_dir import cache_folder
 from robotdesc.config import Config, discover_config
 from robotdesc.diagnostics import Diagnostic, Finding, Severity
 from robotdesc.errors import RobotdescError, RuleCrashed
@@ -126,7 +125,7 @@ def _run_cached(rule: Rule, robot: Robot, context: RuleContext, expanded: Expand
     if not (options.use_cache and rule_cache.is_cached(rule)):
         return list(run_rule(rule, robot, context))
 
-    folder = Path(options.cache_dir) if options.cache_dir else default_cache_dir()
+    folder = cache_folder(options.use_cache, options.cache_dir)
     key = rule_cache.rule_key(rule, context.options, expanded.xml, _mesh_files(context),
                               source=robot.source or "")
     sources = frozenset((expanded.source, *expanded.files, *expanded.files_read))
@@ -152,14 +151,16 @@ def _mesh_context(rules: Sequence[Rule], robot: Robot, target: str, config: Conf
     if not any("meshes" in rule.needs for rule in rules):
         return None
     return MeshContext.for_file(robot, target, config.meshes, tuple(options.package_paths),
-                                tuple(options.package_map))
+                                tuple(options.package_map), use_cache=options.use_cache,
+                                cache_dir=options.cache_dir)
 
 
 def _diagnostic(rule: Rule, severity: Severity, finding: Finding, fallback: Provenance,
                 target: str) -> Diagnostic:
     return Diagnostic(code=rule.code, name=rule.name, severity=severity,
                       message=finding.message, where=finding.where or fallback,
-                      element=finding.element, fix=finding.fix, target=target)
+                      element=finding.element, fix=finding.fix, target=target,
+                      changes=finding.changes)
 
 
 def _unused_findings(suppressions: Iterable[Suppression],

@@ -22,7 +22,7 @@ from typing import Any
 
 from robotdesc._version import code_id, module_stamp
 from robotdesc.cache_dir import read_regular_file, write_entry
-from robotdesc.diagnostics import Finding
+from robotdesc.diagnostics import Finding, ValueChange
 from robotdesc.rules.registry import Rule
 from robotdesc.source import Provenance, Span
 
@@ -40,7 +40,8 @@ FileStat = tuple[str, int | None, int | None, int | None]
 #: A span as stored: path, line, column.
 SpanRecord = list[str | int]
 #: A stored finding (JSON object): message, element, fix, and where (span, macro stack).
-FindingRecord = dict[str, str | None | list[SpanRecord | list[SpanRecord]]]
+FindingRecord = dict[str, str | None | list[SpanRecord | list[SpanRecord]]
+                     | list[list[str | float]]]
 
 
 def is_cached(rule: Rule) -> bool:
@@ -115,9 +116,12 @@ def _span_record(span: Span) -> SpanRecord:
 
 def _record(finding: Finding) -> FindingRecord:
     where = finding.where
+    changes: list[list[str | float]] = [[c.element, c.attribute, c.value, c.tolerance]
+                                        for c in finding.changes]
+    spans: list[SpanRecord | list[SpanRecord]] | None = None if where is None else \
+        [_span_record(where.span), [_span_record(s) for s in where.macro_stack]]
     return {"message": finding.message, "element": finding.element, "fix": finding.fix,
-            "where": None if where is None else
-            [_span_record(where.span), [_span_record(s) for s in where.macro_stack]]}
+            "changes": changes, "where": spans}
 
 
 def _points_into(finding: Finding, sources: frozenset[str]) -> bool:
@@ -133,4 +137,6 @@ def _finding(item: dict[str, Any]) -> Finding:
     where = item["where"]
     provenance = None if where is None else Provenance(
         Span(*where[0]), tuple(Span(*s) for s in where[1]))
-    return Finding(item["message"], provenance, item["element"], item["fix"])
+    changes = tuple(ValueChange(str(e), str(a), str(v), float(t))
+                    for e, a, v, t in item.get("changes", []))
+    return Finding(item["message"], provenance, item["element"], item["fix"], changes)

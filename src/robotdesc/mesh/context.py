@@ -17,9 +17,10 @@ import logging
 from collections.abc import Iterator
 from dataclasses import dataclass
 
+from robotdesc.cache_dir import cache_folder
 from robotdesc.expansion.packages import package_lookup
 from robotdesc.mesh.analyze import analyze_mesh_file
-from robotdesc.mesh.cache import MeshCache, default_cache_dir
+from robotdesc.mesh.cache import MeshCache
 from robotdesc.mesh.errors import DEFAULT_LIMITS, MeshError, MeshLimits
 from robotdesc.mesh.locate import MeshLocator
 from robotdesc.mesh.primitives import primitive_properties
@@ -133,10 +134,12 @@ class MeshContext:
     @classmethod
     def for_file(cls, robot: Robot, target: str, settings: MeshSettings,
                  package_paths: tuple[str, ...] = (),
-                 package_map: tuple[tuple[str, str], ...] = ()) -> MeshContext:
-        """The context for a linted file: the expansion's package chain and the mesh cache."""
+                 package_map: tuple[tuple[str, str], ...] = (), *, use_cache: bool = True,
+                 cache_dir: str | None = None) -> MeshContext:
+        """The context for a linted file: the expansion's package chain and the mesh cache
+        (off with `use_cache` False, the run's `--no-cache`, or the config's `cache`)."""
         find_package = package_lookup(target, package_paths, package_map)
-        directory = default_cache_dir() if settings.cache else None
+        directory = cache_folder(settings.cache and use_cache, cache_dir)
         return cls(robot, settings, find_package, MeshCache(directory) if directory else None)
 
     # --- one mesh -----------------------------------------------------------------------

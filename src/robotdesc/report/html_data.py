@@ -10,6 +10,8 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from robotdesc.inertia.table import inertia_table
+from robotdesc.mesh.context import MeshContext
 from robotdesc.mesh.settings import MeshSettings
 from robotdesc.view.scene import Scene
 
@@ -87,9 +89,6 @@ def collect_report(result: Any, *, package_paths: Sequence[str] = (),
 
 def _inertia_rows(robot: Any, target: str, settings: Any, package_paths: Sequence[str],
                   package_map: Sequence[tuple[str, str]]) -> tuple[Any, ...]:
-    from robotdesc.inertia.table import inertia_table
-    from robotdesc.mesh.context import MeshContext
-
     meshes = MeshContext.for_file(robot, target, settings, tuple(package_paths),
                                   tuple(package_map))
     return tuple(inertia_table(robot, meshes))

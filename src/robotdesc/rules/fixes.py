@@ -3,23 +3,14 @@
 A safe fix keeps the description's meaning (the same file under its right name, the same axis
 direction at unit length, a path through the package to the same file) and is applied by
 `--fix`; an unsafe fix changes what the robot is (its inertia, its limits, its mesh's size)
-and needs `--unsafe-fixes` as well. The edits themselves are made by robotdesc.linting.fix.
+and needs `--unsafe-fixes` as well. The edits are planned and applied by robotdesc.edit.
 """
 
 from __future__ import annotations
 
-import enum
+from robotdesc.edit.fix import Applicability
 
-
-class Applicability(str, enum.Enum):
-    """How sure a fix is: `--fix` applies SAFE ones, `--unsafe-fixes` UNSAFE ones too."""
-
-    SAFE = "safe"
-    UNSAFE = "unsafe"
-
-    def __str__(self) -> str:
-        return self.value
-
+__all__ = ["FIXABLE", "Applicability", "fix_applicability"]
 
 #: Rule code -> the applicability of its fix (a code absent here has no automatic fix).
 FIXABLE: dict[str, Applicability] = {

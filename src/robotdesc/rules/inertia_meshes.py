@@ -15,13 +15,16 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from robotdesc.diagnostics import Finding, Severity
+from robotdesc.inertia.compare import compare_inertia, declared_tensor, mirror_partner, sign_flip
 from robotdesc.inertia.links import has_mass, link_element, mass_of
 from robotdesc.inertia.mesh_access import MeshAccess
+from robotdesc.inertia.suggest import suggest_for_link
 from robotdesc.mesh.context import LinkGeometry
 from robotdesc.mesh.properties import MassProperties, Vec3
 from robotdesc.model.elements import Inertial, Link, Robot
 from robotdesc.rules.registry import RuleContext, rule
 from robotdesc.source import Provenance
+from robotdesc.spatial import frobenius
 
 if TYPE_CHECKING:
     from robotdesc.inertia.compare import InertiaComparison
@@ -84,7 +87,6 @@ def _measured(robot: Robot, ctx: RuleContext) -> Iterator[tuple[Link, LinkGeomet
 
 def _fix(robot: Robot, ctx: RuleContext, link: Link) -> str | None:
     """The suggested `<inertial>` block (meshes in millimetres scaled first)."""
-    from robotdesc.inertia.suggest import suggest_for_link
 
     found = suggest_for_link(robot, _meshes(ctx), link)
     return found.block if found is not None else None
@@ -118,7 +120,6 @@ def _union_bounds(geometries: Sequence[LinkGeometry]) -> Bounds | None:
 def _spread(link: Link) -> tuple[float, float, float]:
     """Second moments of the declared mass about its centre along the link's x, y, z axes
     (m^2): Sigma = (trace(I) / 2 - I) / m, from the declared tensor in link axes."""
-    from robotdesc.inertia.compare import declared_tensor
 
     tensor = declared_tensor(_inertial(link))
     half_trace = (tensor[0][0] + tensor[1][1] + tensor[2][2]) / 2.0
@@ -302,7 +303,6 @@ def _spans(ctx: RuleContext, link: Link, bounds: Bounds) -> bool:
 def _unit_cause(ctx: RuleContext, link: Link) -> str | None:
     """What relates the declared tensor to the geometry's (a unit slip, a rotation, a sign
     convention), if the numbers show it."""
-    from robotdesc.inertia.compare import compare_inertia
 
     geometry = _meshes(ctx).link_geometry(link)
     if not geometry.trusted:
@@ -330,7 +330,6 @@ Comparisons = dict[str, tuple[Link, LinkGeometry, "InertiaComparison"]]
 def _comparisons(robot: Robot, ctx: RuleContext, tolerance: float) -> Comparisons:
     """Link name -> (link, geometry, comparison) for links whose geometry can be trusted,
     leaving out those whose tensor is impossible for their geometry (I204's)."""
-    from robotdesc.inertia.compare import compare_inertia
 
     results: Comparisons = {}
     for link, geometry in _measured(robot, ctx):
@@ -360,8 +359,6 @@ EXACT_FIT = 0.1
 def _fitting_cause(comparison: InertiaComparison) -> str | None:
     """The comparison's cause, dropped when it is a products-sign swap or a rotation that
     does not fit within `EXACT_FIT` (those then count as plain deviations)."""
-    from robotdesc.inertia.compare import sign_flip
-    from robotdesc.spatial import frobenius
 
     cause = comparison.cause
     if cause is None:
@@ -382,8 +379,6 @@ PLACEHOLDER_MASS = 1e-3
 def _mismatch_findings(robot: Robot, ctx: RuleContext, tolerance: float,
                        keep: Callable[[InertiaComparison, str], bool],
                        min_mass: float = 0.0) -> Iterator[Finding]:
-    from robotdesc.inertia.compare import mirror_partner
-
     results = _comparisons(robot, ctx, tolerance)
     for name, (link, geometry, comparison) in results.items():
         if not comparison.mismatch(tolerance) or mass_of(link) <= min_mass:
@@ -492,7 +487,6 @@ def _off_from_every_source(ctx: RuleContext, link: Link, factor: float,
     """Whether the declared moments are `factor` off the uniform-density estimate of each of
     the link's geometries: a collision proxy (a small disc standing for an arm segment, as
     on Unitree H1) must not condemn a tensor that its visual mesh agrees with."""
-    from robotdesc.inertia.compare import compare_inertia
 
     for geometry in _both_sources(ctx, link):
         if not geometry.trusted:

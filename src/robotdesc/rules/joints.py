@@ -6,7 +6,7 @@ import math
 from collections.abc import Iterator
 from dataclasses import dataclass
 
-from robotdesc.diagnostics import Finding, Severity
+from robotdesc.diagnostics import Finding, Severity, ValueChange
 from robotdesc.model.elements import Robot
 from robotdesc.model.tree import LIMITED_TYPES, SCALAR_TYPES
 from robotdesc.rules.registry import RuleContext, rule
@@ -128,8 +128,12 @@ def limit_lower_above_upper(robot: Robot, ctx: RuleContext) -> Iterator[Finding]
         lower = 0.0 if limit.lower is None else limit.lower
         upper = 0.0 if limit.upper is None else limit.upper
         if lower > upper:
+            both = limit.lower is not None and limit.upper is not None
+            swap = (ValueChange(f"joint:{joint.name}/limit", "lower", repr(upper)),
+                    ValueChange(f"joint:{joint.name}/limit", "upper", repr(lower)))
             yield Finding(f"joint '{joint.name}' lower limit {lower:g} is above its upper "
-                          f"limit {upper:g}", limit.where or joint.where, f"joint:{joint.name}")
+                          f"limit {upper:g}", limit.where or joint.where, f"joint:{joint.name}",
+                          changes=swap if both else ())
 
 
 @rule("J104", "non-positive-effort", family=FAMILY, severity=Severity.WARNING)
@@ -340,7 +344,8 @@ def axis_not_normalized(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
             unit = " ".join(f"{c / length:.6g}" for c in joint.axis)
             yield Finding(f"joint '{joint.name}' axis has length {length:.6g}, not 1 "
                           f"(normalized: {unit})", joint.axis_where or joint.where,
-                          f"joint:{joint.name}", fix=f'<axis xyz="{unit}"/>')
+                          f"joint:{joint.name}", fix=f'<axis xyz="{unit}"/>',
+                          changes=(ValueChange(f"joint:{joint.name}/axis", "xyz", unit),))
 
 
 #: A range at least this wide (rad, with rounding slack) on a continuous joint limits nothing.

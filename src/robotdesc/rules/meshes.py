@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 from robotdesc.diagnostics import Finding, Severity
 from robotdesc.inertia.links import is_dynamics_model
 from robotdesc.mesh.records import MassMethod, MeshSummary
+from robotdesc.mesh.scale_check import looks_like_millimetres, robot_size
 from robotdesc.model.elements import Link, MeshRef, Robot
 from robotdesc.rules.registry import RuleContext, rule
 
@@ -338,7 +339,6 @@ def mesh_in_millimetres(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """
     if ctx.meshes is None:
         return
-    from robotdesc.mesh.scale_check import looks_like_millimetres, robot_size
 
     entries = [(link, kind, index, ref, found.summary)
                for link, kind, index, ref, found in _lookups(ctx) if found.summary is not None]

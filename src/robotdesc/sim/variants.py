@@ -13,6 +13,7 @@ import dataclasses
 import logging
 from typing import Any, Mapping, Sequence
 
+from robotdesc.collision import generate_collision
 from robotdesc.model.elements import Collision, Robot
 
 log = logging.getLogger(__name__)
@@ -36,7 +37,6 @@ def generated_parts(robot: Robot, *, method: str = "decimate",
 
     Links whose generation failed are left out (they keep their geometry as written).
     """
-    from robotdesc.collision import generate_collision
 
     result = generate_collision(robot, method, package_paths=package_paths,
                                 package_map=package_map, **overrides)

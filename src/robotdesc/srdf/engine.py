@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from robotdesc.kinematics.geometry import CollisionShape
+from robotdesc.kinematics.scene import build_scene
 from robotdesc.model.tree import JointChain, link_frames
 from robotdesc.srdf.reach import MARGIN, Sphere
 
@@ -47,38 +48,13 @@ class PairChecker:
     """Counts, per pair of `spec.pairs`, the samples in which the two links touch."""
 
     def __init__(self, spec: CheckSpec) -> None:
-        import pinocchio as pin
-
-        from robotdesc.kinematics.geometry import to_coal
-
         self.spec = spec
-        self._pin = pin
-        self.model = pin.buildModelFromXML(spec.urdf, False)
-        self.data = self.model.createData()
-        self.geometry = pin.GeometryModel()
-        by_link: dict[str, list[int]] = {}
-        frames = list(self.model.frames)
-        for shape in spec.shapes:
-            frame_id = self.model.getFrameId(shape.link, pin.BODY)
-            frame = frames[frame_id]
-            placement = frame.placement * pin.SE3(shape.placement[:3, :3].copy(),
-                                                  shape.placement[:3, 3].copy())
-            obj = pin.GeometryObject(f"{shape.link}/{shape.index}", frame.parentJoint, frame_id,
-                                     placement, to_coal(shape, spec.convex))
-            by_link.setdefault(shape.link, []).append(self.geometry.addGeometryObject(obj))
-        owner, first, second = [], [], []
-        for number, (one, two) in enumerate(spec.pairs):
-            for a in by_link.get(one, ()):
-                for b in by_link.get(two, ()):
-                    self.geometry.addCollisionPair(pin.CollisionPair(a, b))
-                    owner.append(number)
-                    first.append(a)
-                    second.append(b)
-        self.geometry_data = pin.GeometryData(self.geometry)
+        scene = build_scene(spec.urdf, spec.shapes, spec.pairs, spec.convex)
+        self._pin = scene.pin
+        self.model, self.data = scene.model, scene.data
+        self.geometry, self.geometry_data = scene.geometry, scene.geometry_data
         #: per geometry pair: the link pair it belongs to, and its two shapes
-        self.owner = np.asarray(owner, dtype=np.int64)
-        self.first = np.asarray(first, dtype=np.int64)
-        self.second = np.asarray(second, dtype=np.int64)
+        self.owner, self.first, self.second = scene.owner, scene.first, scene.second
         index = {name: k for k, name in enumerate(spec.tree.links)}
         self.shape_link = np.array([index[shape.link] for shape in spec.shapes], dtype=np.int64)
         self.centres = np.array([sphere.centre for sphere in spec.spheres], dtype=float)

@@ -61,7 +61,8 @@ class MeshCase:
             self._context = MeshContext.for_file(
                 self.result.robot, self.result.target, self.config.meshes,
                 tuple(self.options.package_paths),
-                tuple(self.options.package_map) + tuple(self.config.packages))
+                tuple(self.options.package_map) + tuple(self.config.packages),
+                use_cache=self.options.use_cache, cache_dir=self.options.cache_dir)
         problem = self._context.lookup(ref).resolution.problem
         return problem.candidate if problem is not None else None
 

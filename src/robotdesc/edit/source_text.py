@@ -79,6 +79,10 @@ class SourceText:
     def body(self, macro: StartTag) -> str:
         return self.text[macro.end:macro.element_end]
 
+    def line_of(self, offset: int) -> int:
+        """The 1-based line of a text offset (lines counted as expat counts them)."""
+        return len(_LINE_BREAK.findall(self.text, 0, offset)) + 1
+
 
 def scan(path: str, text: str) -> SourceText:
     """Every start tag of `text`.
