@@ -15,8 +15,10 @@ from dataclasses import replace
 from typing import Any, Callable, Sequence
 
 from robotdesc.collision.cache import CACHE_VERSION, CollisionCache
+from robotdesc.collision.choose import choose_auto, left_out, no_contact_outcome
 from robotdesc.collision.limits import limit_findings
 from robotdesc.collision.link import LinkTask, run_link
+from robotdesc.collision.methods import DEFAULT_METHOD
 from robotdesc.collision.options import CollisionOptions
 from robotdesc.collision.result import CollisionResult, Finding, LinkOutcome, LinkReport
 from robotdesc.collision.sources import (
@@ -40,7 +42,7 @@ LINK_RUNNER: Callable[[LinkTask], LinkOutcome] = run_link
 Progress = Callable[[int, int, str], None]
 
 
-def generate_collision(robot: Robot, method: str = "decimate", *,
+def generate_collision(robot: Robot, method: str = DEFAULT_METHOD, *,
                        options: CollisionOptions | None = None,
                        package_paths: Sequence[str] = (),
                        package_map: Sequence[tuple[str, str]] = (),
@@ -53,7 +55,8 @@ def generate_collision(robot: Robot, method: str = "decimate", *,
 
     Args:
         robot: a parsed robot (`robotdesc.load`); not modified.
-        method: "decimate", "hull", "coacd", "primitive" or "auto".
+        method: "auto" (default), "decimate", "hull", "coacd" or "primitive" (the table:
+            `robotdesc.collision.methods`).
         options: every parameter (see `CollisionOptions`); `method` and `overrides`
             (option names, e.g. `ratio=0.05`, `threshold=0.08`) replace its fields.
         package_paths, package_map: where `package://` meshes are looked up first.
@@ -154,7 +157,9 @@ def generate_collision(robot: Robot, method: str = "decimate", *,
         if progress is not None:
             done += 1
             progress(done, total, plan.sources[index].link)
-    ordered = tuple(_with_limits(outcomes[i], options) for i in range(total))
+    ordered = tuple(outcomes[i] for i in range(total))
+    ordered = _auto_choice(ordered, options) if options.method == "auto" \
+        else tuple(_with_limits(o, options) for o in ordered)
     return CollisionResult(robot, ordered, options, time.perf_counter() - started, jobs)
 
 
@@ -196,6 +201,15 @@ def plan_links(robot: Robot, options: CollisionOptions, package_paths: Sequence[
     parameters = {**options.key_fields(), "format": CACHE_VERSION}
     keys = [sources_digest(s, digest, parameters) for s in found]
     return Plan(found, keys, CollisionCache(root) if (root and use_cache) else None)
+
+
+def _auto_choice(outcomes: tuple[LinkOutcome, ...],
+                 options: CollisionOptions) -> tuple[LinkOutcome, ...]:
+    """Method auto: links left out of contact on request, then the robot-wide choice under
+    the tolerance and the triangle budget (choose.py), engine limits checked on the result."""
+    out = left_out([o.report.link for o in outcomes], options.no_contact)
+    kept = tuple(no_contact_outcome(o) if o.report.link in out else o for o in outcomes)
+    return tuple(_with_limits(o, options) for o in choose_auto(kept, options))
 
 
 def _with_limits(outcome: LinkOutcome, options: CollisionOptions) -> LinkOutcome:
