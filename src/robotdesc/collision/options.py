@@ -15,6 +15,8 @@ METHODS = tuple(m.name for m in METHOD_TABLE)
 #: auto: the robot-wide triangle budget by default, sized from the Engineer papers: their
 #: hand-made collision had 5,644 polygons for the whole crawler (001, Table II).
 DEFAULT_BUDGET = 5000
+#: auto: the version of the candidate menu (its ladders); raise it when they change.
+AUTO_MENU_VERSION = 2
 PRIMITIVE_KINDS = ("box", "cylinder", "sphere", "capsule")
 #: The decimation engines (mirrors robotdesc.collision.decimate.ENGINES, kept import-free).
 DECIMATORS = ("meshoptimizer", "fast-simplification")
@@ -171,6 +173,9 @@ class CollisionOptions:
         data["auto_order"] = list(self.auto_order)
         data["no_contact"] = sorted(self.no_contact)
         relevant = set(METHODS_BY_NAME[self.method].fields)
+        if self.method == "auto":  # the menu's ladders are code: a new one, a new key
+            data["auto_menu"] = AUTO_MENU_VERSION
+            relevant.add("auto_menu")
         if not self.adapt or (self.method == "decimate" and self.faces is not None):
             relevant -= {"adapt", *_ADAPT_FIELDS}  # nothing adapts: the key of before
         return {name: value for name, value in data.items()
