@@ -75,8 +75,9 @@ def main(argv: list[str] | None = None) -> int:
                 def progress(variant: str, simulated: float, total: float, wall: float,
                              bar: Progress = bar) -> None:
                     bar.update(simulated, total)
-                    bar.note(f"{variant}: {simulated:.1f} of {total:g} s simulated in "
-                             f"{wall:.1f} s")
+                    if simulated > 0:
+                        bar.note(f"{variant}: {simulated:.1f} of {total:g} s simulated "
+                                 f"in {wall:.1f} s")
 
                 comparison = compare_variants(
                     engine, loaded.robot, loaded.meshes, VARIANTS,

@@ -171,3 +171,19 @@ def test_the_command_reports_each_choice(crawler: Path, tmp_path: Path, capsys):
 
 def test_the_default_budget_is_under_the_papers_hand_made_collision():
     assert 2000 <= DEFAULT_BUDGET <= 5644
+
+
+def test_links_left_out_of_contact_lose_their_collision_in_the_output(crawler: Path,
+                                                                       tmp_path: Path, capsys):
+    out = tmp_path / "out"
+    assert main(["collision", str(crawler), "--out", str(out), "--no-contact", "wheel_2,wheel_3",
+                 "--no-cache"]) == 0
+    urdf = (out / "demo.collision.urdf").read_text()
+    from robotdesc.model.parse import parse_urdf
+
+    robot = parse_urdf(urdf, str(out / "demo.collision.urdf"))
+    by_name = {link.name: link for link in robot.links}
+    assert by_name["wheel_2"].collisions == () and by_name["wheel_3"].collisions == ()
+    assert len(by_name["wheel_1"].collisions) == 1 and by_name["body"].collisions
+    assert main(["collision", str(crawler), "--out", str(out), "--no-contact", "wheel_2,wheel_3",
+                 "--no-cache", "--check"]) == 0

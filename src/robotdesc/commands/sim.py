@@ -198,8 +198,9 @@ def run_engine_checks(ns: argparse.Namespace, single: SingleInput) -> int:
     def progress(label: str, simulated: float, total: float, wall: float) -> None:
         detail = f"{label}, RTF {simulated / wall if wall > 0 else 0:.3g} (wall)"
         bar.update(simulated, total, detail)
-        bar.note(f"{label}: {simulated:.1f} of {total:g} s simulated in {wall:.1f} s, "
-                 f"RTF {simulated / wall if wall > 0 else 0:.3g} (wall)")
+        if simulated > 0:
+            bar.note(f"{label}: {simulated:.1f} of {total:g} s simulated in {wall:.1f} s, "
+                     f"RTF {simulated / wall if wall > 0 else 0:.3g} (wall)")
 
     generate: dict[str, object] = {}
     if ns.budget is not None:

@@ -198,6 +198,8 @@ def compare_variants(engine: Engine, robot: Robot, meshes: MeshAssets,
             what = f" (collision generated: method {generate_method})" \
                 if label == "generated" else ""
             note(f"variant {number} of {len(variants)}: {label}{what}, building the scene")
+        if progress is not None:  # a new variant: nothing simulated yet
+            progress(label, 0.0, seconds, 0.0)
         generating = dict(generate or {})
         if note is not None and label == "generated":
             generating["progress"] = _generation_notes(note)
@@ -227,5 +229,6 @@ def _generation_notes(note: Note) -> Callable[[int, int, str], None]:
         now = time.perf_counter()
         if done == total or now - last[0] >= GENERATION_NOTE_PERIOD:
             last[0] = now
-            note(f"generated: collision of {done} of {total} links made ({link})")
+            note(f"generated: collision of {done} of {total} links made"
+                 + (f" ({link})" if link else ""))
     return progress
