@@ -187,3 +187,12 @@ def test_links_left_out_of_contact_lose_their_collision_in_the_output(crawler: P
     assert len(by_name["wheel_1"].collisions) == 1 and by_name["body"].collisions
     assert main(["collision", str(crawler), "--out", str(out), "--no-contact", "wheel_2,wheel_3",
                  "--no-cache", "--check"]) == 0
+
+
+def test_the_config_can_leave_links_out_of_contact(crawler: Path, capsys):
+    (crawler.parent.parent / "robotdesc.toml").write_text('[meshes]\nno-contact = ["wheel_3"]\n')
+    assert main(["collision", str(crawler), "--dry-run", "--no-cache", "--no-contact",
+                 "wheel_2"]) == 0
+    out = capsys.readouterr().out
+    assert "wheel_1: primitive:cylinder" in out
+    assert "wheel_2 (+1 identical): none, 0 triangles" in out

@@ -21,9 +21,10 @@ def choice_lines(result: CollisionResult) -> list[str]:
     `LINK (+N identical): METHOD, T triangles, Hausdorff D mm: WHY`."""
     if result.options is None or getattr(result.options, "method", "") != "auto":
         return []
-    groups: dict[str, list[LinkReport]] = {}
-    for outcome in result.outcomes:
-        groups.setdefault(outcome.key or outcome.report.link, []).append(outcome.report)
+    groups: dict[tuple[str, str], list[LinkReport]] = {}
+    for outcome in result.outcomes:  # identical and given the same (not left out of contact)
+        group = (outcome.key or outcome.report.link, outcome.report.method)
+        groups.setdefault(group, []).append(outcome.report)
     lines = ["auto chose:"]
     for reports in groups.values():
         r = reports[0]

@@ -55,7 +55,8 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser], *,
     parser.add_argument("--no-contact", action="append", default=[], metavar="LINKS",
                         help="auto: leave these links (comma-separated shell patterns, "
                              "e.g. '*_track_link') out of contact: no <collision>, e.g. a "
-                             "belt that touches the ground only through its wheels")
+                             "belt that touches the ground only through its wheels (also "
+                             "[meshes] no-contact in the config)")
     parser.add_argument("--out", metavar="DIR", help="output folder (required unless "
                         "only reporting with --dry-run)")
     parser.add_argument("--check", action="store_true",
@@ -130,8 +131,8 @@ def run(ns: argparse.Namespace) -> int:
             primitives=tuple(p.strip() for p in ns.primitives.split(",") if p.strip()),
             target_percent=ns.target, source=ns.source, mesh_timeout_s=ns.mesh_timeout,
             budget_triangles=ns.budget, limits=limits,
-            no_contact=tuple(p.strip() for text in ns.no_contact for p in text.split(",")
-                             if p.strip())).validated()
+            no_contact=_no_contact(ns.no_contact, single.config.meshes.no_contact)
+        ).validated()
     except ValueError as error:
         raise UsageError(str(error)) from None
     if ns.jobs is not None and ns.jobs < 1:
@@ -192,3 +193,10 @@ def run(ns: argparse.Namespace) -> int:
                                                            *finding_lines(result),
                                                            total_line(result))))
     return EXIT_FINDINGS if result.failed else EXIT_OK
+
+
+def _no_contact(given: list[str], configured: tuple[str, ...]) -> tuple[str, ...]:
+    """The links left out of contact: `--no-contact` (comma-separated, repeatable) and the
+    config's `[meshes] no-contact`, each pattern once."""
+    patterns = [p.strip() for text in given for p in text.split(",") if p.strip()]
+    return tuple(dict.fromkeys([*configured, *patterns]))

@@ -65,7 +65,8 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser], *,
                              "`robotdesc collision`'s)")
     parser.add_argument("--no-contact", action="append", default=[], metavar="LINKS",
                         help="auto: links left out of contact in the generated collision "
-                             "(comma-separated shell patterns)")
+                             "(comma-separated shell patterns; also [meshes] no-contact in "
+                             "the config)")
     parser.add_argument("--engine", choices=("mujoco", "dart"), default="mujoco",
                         help="physics engine: mujoco (robotdesc[sim], collides convex hulls) "
                              "or dart (robotdesc[dart], collides triangles, as Gazebo)")
@@ -205,9 +206,10 @@ def run_engine_checks(ns: argparse.Namespace, single: SingleInput) -> int:
     generate: dict[str, object] = {}
     if ns.budget is not None:
         generate["budget_triangles"] = ns.budget
-    if ns.no_contact:
-        generate["no_contact"] = tuple(p.strip() for text in ns.no_contact
-                                       for p in text.split(",") if p.strip())
+    no_contact = tuple(dict.fromkeys([*single.config.meshes.no_contact, *(
+        p.strip() for text in ns.no_contact for p in text.split(",") if p.strip())]))
+    if no_contact:
+        generate["no_contact"] = no_contact
 
     with progress_for(ns, f"sim {engine.name}", unit="s simulated") as bar:
         document: dict[str, object] = {"robot": loaded.robot.name, "engine": engine.name}
