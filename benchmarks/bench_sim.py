@@ -105,18 +105,15 @@ def _table(rows: list[tuple[str, str, Any]], seconds: float, before: tuple[float
            after: tuple[float, ...], budget: int) -> str:
     """The markdown block: how it was measured, then one row per robot, engine, variant."""
     today = datetime.date.today().isoformat()
-    lines = [
-        f"Measured {today} by `python benchmarks/bench_sim.py --write` ({os.cpu_count()} "
-        f"cores, load average {before[0]:.1f} before and {after[0]:.1f} after: a shared "
-        f"machine, so read the CPU-time figures; {_versions()}; {seconds:g} s simulated per "
-        f"variant; `generated` = `robotdesc collision`'s default, method auto with its "
-        f"budget of {budget:,} triangles). Ratio: the variant's RTF by CPU time over the "
-        "visual meshes', same run; the papers' Gazebo ratio is 5 (0.2 against 1).",
-        "",
-        "| robot | engine | collision | triangles | primitives | RTF (CPU) | RTF (wall) "
-        "| ratio to visual |",
-        "|---|---|---|---|---|---|---|---|",
-    ]
+    how = (f"Measured {today} by `python benchmarks/bench_sim.py --write` ({os.cpu_count()} "
+           f"cores, load average {before[0]:.1f} before and {after[0]:.1f} after: a shared "
+           f"machine, so read the CPU-time figures; {_versions()}; {seconds:g} s simulated "
+           f"per variant; `generated` = `robotdesc collision`'s default, method auto with its "
+           f"budget of {budget:,} triangles). Ratio: the variant's RTF by CPU time over the "
+           "visual meshes', same run; the papers' Gazebo ratio is 5 (0.2 against 1).")
+    header = ("| robot | engine | collision | triangles | primitives | RTF (CPU) | RTF (wall) "
+              "| ratio to visual |")
+    lines = [how, "", header, "|---|---|---|---|---|---|---|---|"]
     for label, engine, comparison in rows:
         visual = next((v for v in comparison.variants if v.label == "visual"),
                       comparison.variants[0])
@@ -132,7 +129,7 @@ def _table(rows: list[tuple[str, str, Any]], seconds: float, before: tuple[float
 def _write_block(path: Path, table: str) -> None:
     """Replace the text between BEGIN and END in `path` by `table`."""
     text = path.read_text(encoding="utf-8")
-    pattern = re.compile(re.escape(BEGIN) + r".*?" + re.escape(END), re.S)
+    pattern = re.compile(re.escape(BEGIN) + r".*?" + re.escape(END), re.DOTALL)
     if not pattern.search(text):
         raise SystemExit(f"{path}: no {BEGIN} ... {END} block to fill")
     path.write_text(pattern.sub(lambda _: f"{BEGIN}\n{table}{END}", text), encoding="utf-8")

@@ -70,8 +70,8 @@ def test_a_wheel_mesh_becomes_a_cylinder():
 
 def test_a_convex_part_becomes_its_hull():
     vertices, faces = _truncated_cube()
-    soup = _subdivide(*(lambda s: (s.reshape(-1, 3), np.arange(len(s) * 3).reshape(-1, 3)))(
-        _subdivide(vertices, faces)))
+    once = _subdivide(vertices, faces)
+    soup = _subdivide(once.reshape(-1, 3), np.arange(len(once) * 3).reshape(-1, 3))
     chosen = _chosen(soup, "bracket")
     assert chosen.report.method == "hull", chosen.report.detail
     assert chosen.report.percent(chosen.report.hausdorff) < 0.01

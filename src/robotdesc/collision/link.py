@@ -7,8 +7,8 @@ checked later by the caller (they are not part of the cache key).
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, replace
-from typing import Callable
 
 import numpy as np
 
@@ -26,7 +26,7 @@ from robotdesc.collision.result import (
     PrimitivePart,
 )
 from robotdesc.collision.tessellate import primitive_mesh
-from robotdesc.errors import CollisionOptionError, NoVolumeError
+from robotdesc.errors import NoVolumeError
 from robotdesc.mesh.records import MassMethod
 
 #: decimate with `adapt`: a budget whose result misses the target is raised by at least
@@ -231,8 +231,8 @@ def _coacd(vertices: np.ndarray, faces: np.ndarray, options: CollisionOptions) -
     """CoACD's convex pieces (the input decimated first when over `coacd_input_faces`)."""
     from robotdesc.collision.decompose import coacd_decompose
 
-    source_v, source_f, notes = vertices, faces, [f"threshold {options.threshold:g}, "
-                                                  f"seed {options.seed}"]
+    notes = [f"threshold {options.threshold:g}, seed {options.seed}"]
+    source_v, source_f = vertices, faces
     if options.coacd_input_faces and len(faces) > options.coacd_input_faces:
         simplified = decimate(vertices, faces, options.coacd_input_faces).part
         source_v, source_f = simplified.vertices, simplified.faces

@@ -142,8 +142,7 @@ class CollisionOptions:
                    f"auto order must list methods among {methods}; got {given}")
         if self.budget_triangles < 0:
             yield ("budget_triangles", self.budget_triangles,
-                   f"the triangle budget must be 0 (none) or positive, got "
-                   f"{self.budget_triangles}")
+                   f"the triangle budget must be 0 (none) or positive, got {self.budget_triangles}")
         for name, low in (("target_percent", 0.0), ("samples", 9), ("mesh_timeout_s", 0.0)):
             if not getattr(self, name) > low:
                 yield name, getattr(self, name), "target, samples and timeout must be positive"
