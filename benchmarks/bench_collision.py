@@ -35,7 +35,8 @@ def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("robot", nargs="?", default=DEFAULT_ROBOT)
     parser.add_argument("--methods",
-                        default="decimate,decimate/fast-simplification,hull,primitive,coacd",
+                        default="auto,decimate,decimate/fast-simplification,hull,primitive,"
+                                "coacd",
                         help="methods; decimate/ENGINE picks the decimator")
     parser.add_argument("--jobs", default="1,2",
                         help="job counts timed, comma-separated (default 1,2)")

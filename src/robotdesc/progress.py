@@ -93,6 +93,20 @@ class Progress:
             self._bar.update(self._task, completed=done, total=self.total,
                              description=self.detail)
 
+    def note(self, text: str) -> None:
+        """Say what starts now: a plain line at once when `stream` is no terminal (as in
+        CI), the bar's note on a terminal, nothing when quiet."""
+        if self.quiet:
+            return
+        if self._bar is not None:
+            self.update(self.done, detail=text)
+            return
+        try:
+            self.stream.write(f"robotdesc: {self.label}: {text}\n")
+            self.stream.flush()
+        except (OSError, ValueError):
+            pass
+
     def advance(self, amount: float = 1, detail: str | None = None) -> None:
         """Add `amount` to the amount done."""
         with self._lock:

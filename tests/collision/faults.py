@@ -36,3 +36,18 @@ def stall_on_slow_link(task):
 
         time.sleep(60)
     return run_link(task)
+
+
+def write_pid_and_sleep(folder, seconds=60.0):
+    """Write this worker's pid into `folder`, then sleep (a long link)."""
+    import time
+
+    with open(os.path.join(folder, f"{os.getpid()}.pid"), "w") as handle:
+        handle.write("x")
+    time.sleep(seconds)
+    return os.getpid()
+
+
+def write_pid_and_nap(folder):
+    """A link that ends after 3 s, so it sends its result after its parent died."""
+    return write_pid_and_sleep(folder, 3.0)

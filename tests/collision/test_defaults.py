@@ -30,7 +30,7 @@ def _codes(report):
 
 
 def test_decimate_raises_its_budget_until_the_target_is_met(link1):
-    report = run_link(LinkTask("link1", link1, CollisionOptions())).report
+    report = run_link(LinkTask("link1", link1, CollisionOptions("decimate"))).report
     assert report.status == "ok", report.findings
     assert report.percent(report.hausdorff) <= 1.0
     assert "budget raised 251 -> 502 faces for the 1 % target" in report.detail
@@ -38,17 +38,17 @@ def test_decimate_raises_its_budget_until_the_target_is_met(link1):
 
 
 def test_without_adapting_the_finding_names_the_option_and_value(link1):
-    fixed = run_link(LinkTask("link1", link1, CollisionOptions(adapt=False))).report
+    fixed = run_link(LinkTask("link1", link1, CollisionOptions("decimate", adapt=False))).report
     assert _codes(fixed) == ["over-tolerance"]
     message = fixed.findings[0].message
     assert "drop --no-adapt" in message and "--target 1.1" in message
-    budget = run_link(LinkTask("link1", link1, CollisionOptions(faces=250))).report
+    budget = run_link(LinkTask("link1", link1, CollisionOptions("decimate", faces=250))).report
     assert "raise --faces" in budget.findings[0].message
 
 
 def test_the_budget_stops_at_the_engines_face_limit(link1):
     limits = EngineLimits("tiny", max_mesh_faces=300)
-    options = CollisionOptions(limits=limits, target_percent=0.3)
+    options = CollisionOptions("decimate", limits=limits, target_percent=0.3)
     report = run_link(LinkTask("link1", link1, options)).report
     [finding] = report.findings
     assert finding.code == "over-tolerance"

@@ -115,20 +115,6 @@ def test_primitive_on_a_real_mesh_reports_overlap():
     assert outcome.report.volume_ratio > 0.5
 
 
-def test_auto_picks_the_cheapest_method_meeting_the_target():
-    truth = primitive_mesh(Cylinder(0.05, 0.3))
-    options = CollisionOptions(method="auto", target_percent=2.0)
-    outcome = run_link(LinkTask("tube", truth.vertices[truth.faces], options))
-    assert outcome.report.method.startswith("primitive")
-    vertices, faces = _mesh(LINK1)
-    options = CollisionOptions(method="auto", target_percent=3.5,
-                               auto_order=("primitive", "hull", "decimate"))
-    outcome = run_link(LinkTask("link1", vertices[faces], options))
-    assert outcome.report.method == "decimate", outcome.report.detail
-    assert outcome.report.percent(outcome.report.hausdorff) <= 3.5
-    assert "primitive" in outcome.report.detail and "hull" in outcome.report.detail
-
-
 @pytest.mark.slow
 def test_coacd_is_deterministic_and_within_its_limits():
     vertices, faces = _mesh(HIP)

@@ -20,6 +20,7 @@ def test_failing_robot_exits_1_and_names_the_link(capsys) -> None:
     assert "result: FAIL (link 'wrist_roll_link')" in out
 
 
+@pytest.mark.slow  # settles, then generates collision (method auto) and times both
 def test_passing_robot_prints_checks_settle_time_and_rtf(capsys) -> None:
     code = main(["sim", str(FIXTURES / "slip_arm.urdf"), "--seconds", "0.5",
                  "--drop-height", "0.02"])

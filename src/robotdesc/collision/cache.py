@@ -14,7 +14,7 @@ import io
 import json
 import logging
 import os
-from dataclasses import fields
+from dataclasses import fields, replace
 from pathlib import Path
 from typing import Any
 
@@ -49,37 +49,22 @@ class CollisionCache:
                 if meta.get("key") != key:
                     log.debug("collision cache entry %s holds another key", path)
                     return None
-                meshes = [MeshPart(data[f"v{i}"], data[f"f{i}"], bool(convex))
-                          for i, convex in enumerate(meta["convex"])]
+                outcome = _outcome(meta, data, "", key)
+                alternatives = tuple(_outcome(m, data, f"a{j}_", key)
+                                     for j, m in enumerate(meta.get("alternatives", ())))
         except (OSError, ValueError, KeyError, TypeError, AttributeError) as error:
             log.debug("ignoring unreadable collision cache entry %s: %s", path, error)
             return None
-        try:
-            report = _report(meta["report"])
-            primitives = [PrimitivePart(_PRIMITIVES[p["kind"]](**p["dims"]),
-                                        Pose(tuple(p["xyz"]), tuple(p["rpy"])))
-                          for p in meta["primitives"]]
-        except (KeyError, TypeError, ValueError) as error:
-            log.debug("ignoring corrupt collision cache entry %s: %s", path, error)
-            return None
-        return LinkOutcome(report, tuple(meshes) + tuple(primitives), key)
+        return replace(outcome, alternatives=alternatives)
 
     def put(self, outcome: LinkOutcome) -> None:
         if not outcome.key or not outcome.parts:
             return
-        meshes = [p for p in outcome.parts if isinstance(p, MeshPart)]
-        primitives = [p for p in outcome.parts if isinstance(p, PrimitivePart)]
-        meta = {"key": outcome.key, "report": outcome.report.to_dict(),
-                "convex": [p.convex for p in meshes],
-                "primitives": [{"kind": type(p.geometry).__name__,
-                                "dims": {k: v for k, v in vars(p.geometry).items()
-                                         if k != "where"},
-                                "xyz": list(p.origin.xyz), "rpy": list(p.origin.rpy)}
-                               for p in primitives]}
-        arrays = {"meta": np.array(json.dumps(meta))}
-        for i, part in enumerate(meshes):
-            arrays[f"v{i}"] = part.vertices
-            arrays[f"f{i}"] = part.faces
+        arrays: dict[str, np.ndarray] = {}
+        meta = _meta(outcome, arrays, "")
+        meta["alternatives"] = [_meta(a, arrays, f"a{j}_")
+                                for j, a in enumerate(outcome.alternatives)]
+        arrays["meta"] = np.array(json.dumps(meta))
         buffer = io.BytesIO()
         # numpy's stub lets a name match `allow_pickle`, which older numpy does not have
         np.savez(buffer, **arrays)  # type: ignore[arg-type]
@@ -101,3 +86,30 @@ def _report(data: dict[str, Any]) -> LinkReport:
     return LinkReport(**values)
 
 
+
+
+def _meta(outcome: LinkOutcome, arrays: dict[str, np.ndarray], prefix: str) -> dict[str, Any]:
+    """The JSON of one outcome; its meshes go into `arrays` under `prefix`."""
+    meshes = [p for p in outcome.parts if isinstance(p, MeshPart)]
+    primitives = [p for p in outcome.parts if isinstance(p, PrimitivePart)]
+    for i, part in enumerate(meshes):
+        arrays[f"{prefix}v{i}"] = part.vertices
+        arrays[f"{prefix}f{i}"] = part.faces
+    return {"key": outcome.key, "report": outcome.report.to_dict(),
+            "convex": [p.convex for p in meshes],
+            "primitives": [{"kind": type(p.geometry).__name__,
+                            "dims": {k: v for k, v in vars(p.geometry).items()
+                                     if k != "where"},
+                            "xyz": list(p.origin.xyz), "rpy": list(p.origin.rpy)}
+                           for p in primitives]}
+
+
+def _outcome(meta: dict[str, Any], data: Any, prefix: str, key: str) -> LinkOutcome:
+    """One outcome read back from `_meta`'s JSON and the arrays (KeyError, ValueError,
+    TypeError: a corrupt entry)."""
+    meshes = [MeshPart(data[f"{prefix}v{i}"], data[f"{prefix}f{i}"], bool(convex))
+              for i, convex in enumerate(meta["convex"])]
+    primitives = [PrimitivePart(_PRIMITIVES[p["kind"]](**p["dims"]),
+                                Pose(tuple(p["xyz"]), tuple(p["rpy"])))
+                  for p in meta["primitives"]]
+    return LinkOutcome(_report(meta["report"]), tuple(meshes) + tuple(primitives), key)

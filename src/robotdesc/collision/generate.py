@@ -11,12 +11,15 @@ from __future__ import annotations
 
 import logging
 import time
+from collections import Counter
 from dataclasses import replace
 from typing import Any, Callable, Sequence
 
 from robotdesc.collision.cache import CACHE_VERSION, CollisionCache
+from robotdesc.collision.choose import choose_auto, left_out, no_contact_outcome
 from robotdesc.collision.limits import limit_findings
 from robotdesc.collision.link import LinkTask, run_link
+from robotdesc.collision.methods import DEFAULT_METHOD
 from robotdesc.collision.options import CollisionOptions
 from robotdesc.collision.result import CollisionResult, Finding, LinkOutcome, LinkReport
 from robotdesc.collision.sources import (
@@ -41,7 +44,7 @@ LINK_RUNNER: Callable[[LinkTask], LinkOutcome] = run_link
 Progress = Callable[[int, int, str], None]
 
 
-def generate_collision(robot: Robot, method: str = "decimate", *,
+def generate_collision(robot: Robot, method: str = DEFAULT_METHOD, *,
                        options: CollisionOptions | None = None,
                        package_paths: Sequence[str] = (),
                        package_map: Sequence[tuple[str, str]] = (),
@@ -54,7 +57,8 @@ def generate_collision(robot: Robot, method: str = "decimate", *,
 
     Args:
         robot: a parsed robot (`robotdesc.load`); not modified.
-        method: "decimate", "hull", "coacd", "primitive" or "auto".
+        method: "auto" (default), "decimate", "hull", "coacd" or "primitive" (the table:
+            `robotdesc.collision.methods`).
         options: every parameter (see `CollisionOptions`); `method` and `overrides`
             (option names, e.g. `ratio=0.05`, `threshold=0.08`) replace its fields.
         package_paths, package_map: where `package://` meshes are looked up first.
@@ -111,16 +115,31 @@ def generate_collision(robot: Robot, method: str = "decimate", *,
             outcomes[index] = _failed(sources.link, options.method, key, failure)
             continue
         tasks.append((index, LinkTask(sources.link, soup, options, key or "")))
+    # largest first: the longest links start at once, the small ones fill in after
+    tasks.sort(key=lambda item: -len(item[1].triangles))
+    copied = Counter(copies.values())
     done = len(outcomes)
     if progress is not None:
         progress(done, total, "")
     jobs = max(1, jobs or default_jobs())
+    work = [len(task.triangles) for _, task in tasks]
+    work_done = 0
+    work_started = time.perf_counter()
 
     def finished(position: int, outcome: object) -> None:
-        nonlocal done
-        done += 1
+        """Cache the link at once (an interrupted run keeps it); count it and its
+        identical copies; estimate the time left by the triangles still to process."""
+        nonlocal done, work_done
+        index, task = tasks[position]
+        if plan.cache is not None and isinstance(outcome, LinkOutcome) and outcome.written:
+            plan.cache.put(replace(outcome, key=task.key))
+        done += 1 + copied[index]
+        work_done += work[position]
         if progress is not None:
-            progress(done, total, tasks[position][1].link)
+            left = sum(work) - work_done
+            eta = "" if not left else "; about " + _duration(
+                (time.perf_counter() - work_started) * left / max(work_done, 1)) + " left"
+            progress(done, total, task.link + eta)
 
     arguments = [task for _, task in tasks]
     if not tasks:
@@ -145,17 +164,16 @@ def generate_collision(robot: Robot, method: str = "decimate", *,
             outcome = _failed(task.link, options.method, task.key,
                               Finding(code, "error", _failure_message(task.link, outcome,
                                                                       options)))
-        elif plan.cache is not None and outcome.written:
-            plan.cache.put(outcome)
         outcomes[index] = replace(outcome, key=task.key)
     for index, original in copies.items():
         made = outcomes[original]
         outcomes[index] = replace(made, report=replace(
             made.report, link=plan.sources[index].link, cached=made.written))
-        if progress is not None:
-            done += 1
-            progress(done, total, plan.sources[index].link)
-    ordered = tuple(_with_limits(outcomes[i], options) for i in range(total))
+    if progress is not None and done < total:  # copies of links that failed to load
+        progress(total, total, "")
+    ordered = tuple(outcomes[i] for i in range(total))
+    ordered = _auto_choice(ordered, options) if options.method == "auto" \
+        else tuple(_with_limits(o, options) for o in ordered)
     return CollisionResult(robot, ordered, options, time.perf_counter() - started, jobs)
 
 
@@ -198,6 +216,15 @@ def plan_links(robot: Robot, options: CollisionOptions, package_paths: Sequence[
     return Plan(found, keys, CollisionCache(root) if (root and use_cache) else None)
 
 
+def _auto_choice(outcomes: tuple[LinkOutcome, ...],
+                 options: CollisionOptions) -> tuple[LinkOutcome, ...]:
+    """Method auto: links left out of contact on request, then the robot-wide choice under
+    the tolerance and the triangle budget (choose.py), engine limits checked on the result."""
+    out = left_out([o.report.link for o in outcomes], options.no_contact)
+    kept = tuple(no_contact_outcome(o) if o.report.link in out else o for o in outcomes)
+    return tuple(_with_limits(o, options) for o in choose_auto(kept, options))
+
+
 def _with_limits(outcome: LinkOutcome, options: CollisionOptions) -> LinkOutcome:
     if not outcome.written:
         return outcome
@@ -220,6 +247,12 @@ def _failure_message(link: str, failure: TaskFailure, options: CollisionOptions)
     return (f"link {link} did not finish within the per-link limit of {limit:g} s and was "
             f"stopped: raise it with --mesh-timeout {_round_limit(2 * limit)} "
             f"(mesh_timeout_s in Python), {hint}")
+
+
+def _duration(seconds: float) -> str:
+    """`1 min 05 s`, `42 s`."""
+    whole = int(seconds + 0.5)
+    return f"{whole // 60} min {whole % 60:02d} s" if whole >= 60 else f"{whole} s"
 
 
 def _round_limit(seconds: float) -> str:

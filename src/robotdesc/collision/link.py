@@ -7,6 +7,7 @@ checked later by the caller (they are not part of the cache key).
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -25,7 +26,7 @@ from robotdesc.collision.result import (
     PrimitivePart,
 )
 from robotdesc.collision.tessellate import primitive_mesh
-from robotdesc.errors import CollisionOptionError, NoVolumeError
+from robotdesc.errors import NoVolumeError
 from robotdesc.mesh.records import MassMethod
 
 #: decimate with `adapt`: a budget whose result misses the target is raised by at least
@@ -76,20 +77,34 @@ def run_link(task: LinkTask) -> LinkOutcome:
         return _failed(base, start, Finding("no-volume", "error",
                                             "the link's geometry encloses no volume"))
     volume_in = summary.properties.volume
+    open_input = summary.method is MassMethod.CONVEX_HULL
     try:
         if options.method == "auto":
-            made, measured = _auto(vertices, faces, options)
+            menu = _auto_menu(vertices, faces, options)
         else:
-            made, measured = _make_measured(options.method, vertices, faces, options)
+            menu = [MAKERS[options.method](vertices, faces, options)]
     except NoVolumeError as error:
         return _failed(base, start, Finding("no-volume", "error", str(error)))
     except ImportError as error:
         return _failed(base, start, Finding(
             "backend-missing", "error",
             f"{error.name or error}: reinstall robotdesc (its collision dependencies are missing)"))
+    outcomes = [_outcome(base, made, measured, volume_in, open_input, task.key)
+                for made, measured in menu]
+    seconds = time.perf_counter() - start
+    outcomes = [replace(o, report=replace(o.report, seconds=seconds)) for o in outcomes]
+    if options.method != "auto":
+        return outcomes[0]
+    return replace(_first_choice(outcomes, options.target_percent),
+                   alternatives=tuple(outcomes))
+
+
+def _outcome(base: LinkReport, made: _Made, measured: Fidelity, volume_in: float,
+             open_input: bool, key: str) -> LinkOutcome:
+    """One candidate's geometry with its report (errors: no geometry)."""
     surface = [_as_mesh(p) for p in made.parts]
     findings = list(made.findings)
-    if summary.method is MassMethod.CONVEX_HULL:  # VOL cannot be against the input itself
+    if open_input:  # VOL cannot be against the input itself
         findings.append(Finding("open-input", "warning", "the input is no closed surface "
                                 "(its volume is unknown): VOL is against its convex hull"))
     errors = any(f.severity == "error" for f in findings)
@@ -102,20 +117,21 @@ def run_link(task: LinkTask) -> LinkOutcome:
         volume_ratio=union_volume(surface) / volume_in,
         forward_mean=measured.forward_mean, forward_max=measured.forward_max,
         backward_mean=measured.backward_mean, backward_max=measured.backward_max,
-        diagonal=measured.diagonal, seconds=time.perf_counter() - start,
-        detail=made.detail, findings=tuple(findings))
+        diagonal=measured.diagonal, detail=made.detail, findings=tuple(findings))
     if isinstance(made.parts[0], PrimitivePart):
         report = replace(report, faces_after=0, vertices_after=0)
-    return LinkOutcome(report, made.parts if not errors else (), task.key)
+    return LinkOutcome(report, made.parts if not errors else (), key)
 
 
-def _make_measured(method: str, vertices: np.ndarray, faces: np.ndarray,
-                   options: CollisionOptions) -> tuple[_Made, Fidelity]:
-    """One method's geometry and its fidelity (decimate adapts its budget to the target)."""
-    if method == "decimate":
-        return _decimate_to_target(vertices, faces, options)
-    made = _make(method, vertices, faces, options)
-    return made, _measure(vertices, faces, made.parts, options)
+def _first_choice(outcomes: list[LinkOutcome], target_percent: float) -> LinkOutcome:
+    """Before the robot-wide choice: the cheapest candidate within the link's own target,
+    else the most faithful (the choice of `choose.choose_auto` replaces it)."""
+    usable = [o for o in outcomes if o.written] or outcomes
+    within = [o for o in usable
+              if (o.report.percent(o.report.hausdorff) or 0.0) <= target_percent]
+    if within:
+        return min(within, key=lambda o: o.report.faces_after)
+    return min(usable, key=lambda o: o.report.hausdorff or float("inf"))
 
 
 def _decimate_once(vertices: np.ndarray, faces: np.ndarray, target: int,
@@ -205,70 +221,135 @@ def _fit_hulls(parts: list[MeshPart], options: CollisionOptions) -> tuple[list[M
                     f"{options.limits.name} limit of {limit}")
 
 
-def _make(method: str, vertices: np.ndarray, faces: np.ndarray,
-          options: CollisionOptions) -> _Made:
-    """The geometry of hull, coacd or primitive (decimate: `_decimate_to_target`)."""
-    if method == "hull":
-        parts, note = _fit_hulls([convex_hull(vertices)], options)
-        return _Made("hull", tuple(parts), note)
-    if method == "coacd":
-        from robotdesc.collision.decompose import coacd_decompose
-
-        source_v, source_f, notes = vertices, faces, [f"threshold {options.threshold:g}, "
-                                                      f"seed {options.seed}"]
-        if options.coacd_input_faces and len(faces) > options.coacd_input_faces:
-            simplified = decimate(vertices, faces, options.coacd_input_faces).part
-            source_v, source_f = simplified.vertices, simplified.faces
-            notes.append(f"input decimated {len(faces):,} -> {len(source_f):,} faces first")
-        parts = coacd_decompose(source_v, source_f, threshold=options.threshold,
-                                max_hulls=options.max_hulls,
-                                hull_vertices=options.hull_vertices,
-                                iterations=options.coacd_iterations,
-                                depth=options.coacd_depth, nodes=options.coacd_nodes,
-                                preprocess_resolution=options.preprocess_resolution,
-                                seed=options.seed)
-        parts, note = _fit_hulls(parts, options)
-        return _Made("coacd", tuple(parts), "; ".join(notes + ([note] if note else [])))
-    if method == "primitive":
-        from robotdesc.collision.primitives import fit_primitive
-
-        fitted = fit_primitive(vertices, faces, options.primitives)
-        kind = type(fitted.part.geometry).__name__.lower()
-        tried = ", ".join(f"{k} {v:.3f}" for k, v in fitted.tried)
-        detail = "; ".join((f"{kind}, IoU {fitted.iou:.3f} (tried: {tried})",) + fitted.notes)
-        return _Made(f"primitive:{kind}", (fitted.part,), detail)
-    raise CollisionOptionError("method", method, f"unknown method {method!r}")
+def _hull(vertices: np.ndarray, faces: np.ndarray, options: CollisionOptions) -> _Made:
+    """One convex hull (reduced to the engine's vertices per hull with `adapt`)."""
+    parts, note = _fit_hulls([convex_hull(vertices)], options)
+    return _Made("hull", tuple(parts), note)
 
 
-def _auto(vertices: np.ndarray, faces: np.ndarray,
-          options: CollisionOptions) -> tuple[_Made, Fidelity]:
-    """The first method in `auto_order` meeting the target; else the most faithful."""
-    tried: list[tuple[_Made, Fidelity]] = []
+def _coacd(vertices: np.ndarray, faces: np.ndarray, options: CollisionOptions) -> _Made:
+    """CoACD's convex pieces (the input decimated first when over `coacd_input_faces`)."""
+    from robotdesc.collision.decompose import coacd_decompose
+
+    notes = [f"threshold {options.threshold:g}, seed {options.seed}"]
+    source_v, source_f = vertices, faces
+    if options.coacd_input_faces and len(faces) > options.coacd_input_faces:
+        simplified = decimate(vertices, faces, options.coacd_input_faces).part
+        source_v, source_f = simplified.vertices, simplified.faces
+        notes.append(f"input decimated {len(faces):,} -> {len(source_f):,} faces first")
+    parts = coacd_decompose(source_v, source_f, threshold=options.threshold,
+                            max_hulls=options.max_hulls,
+                            hull_vertices=options.hull_vertices,
+                            iterations=options.coacd_iterations,
+                            depth=options.coacd_depth, nodes=options.coacd_nodes,
+                            preprocess_resolution=options.preprocess_resolution,
+                            seed=options.seed)
+    parts, note = _fit_hulls(parts, options)
+    return _Made("coacd", tuple(parts), "; ".join(notes + ([note] if note else [])))
+
+
+def _primitive(vertices: np.ndarray, faces: np.ndarray, options: CollisionOptions) -> _Made:
+    """The best box, cylinder, sphere or capsule by volume overlap."""
+    from robotdesc.collision.primitives import fit_primitive
+
+    fitted = fit_primitive(vertices, faces, options.primitives)
+    kind = type(fitted.part.geometry).__name__.lower()
+    tried = ", ".join(f"{k} {v:.3f}" for k, v in fitted.tried)
+    detail = "; ".join((f"{kind}, IoU {fitted.iou:.3f} (tried: {tried})",) + fitted.notes)
+    return _Made(f"primitive:{kind}", (fitted.part,), detail)
+
+
+def _measured(make: Callable[[np.ndarray, np.ndarray, CollisionOptions], _Made]) -> Maker:
+    """A geometry maker whose result is then measured against the input."""
+    def run(vertices: np.ndarray, faces: np.ndarray,
+            options: CollisionOptions) -> tuple[_Made, Fidelity]:
+        made = make(vertices, faces, options)
+        return made, _measure(vertices, faces, made.parts, options)
+    return run
+
+
+Maker = Callable[[np.ndarray, np.ndarray, CollisionOptions], "tuple[_Made, Fidelity]"]
+#: The one table of collision methods (the names, summaries and option fields are in
+#: `robotdesc.collision.methods`, import-free): method -> its geometry, measured. `auto` is
+#: not here: it makes a menu of these (`_auto_menu`), chosen robot-wide by `choose.py`.
+MAKERS: dict[str, Maker] = {
+    "decimate": lambda v, f, o: _decimate_to_target(v, f, o),
+    "hull": _measured(_hull),
+    "coacd": _measured(_coacd),
+    "primitive": _measured(_primitive),
+}
+
+
+#: auto: the decimation budgets tried (faces), smallest first, until one meets the target.
+AUTO_DECIMATE_BUDGETS = (48, 96, 192, 384, 768, 1536, 3072)
+#: auto: the vertices of the reduced convex hulls tried, fewest first.
+AUTO_HULL_VERTICES = (12, 24, 48, 96)
+
+
+def _auto_menu(vertices: np.ndarray, faces: np.ndarray,
+               options: CollisionOptions) -> list[tuple[_Made, Fidelity]]:
+    """Every candidate of `auto`, measured: the methods of `auto_order` (decimate as a ladder
+    of budgets, stopping at the first within the target of the link's own diagonal; coacd
+    only when neither a primitive nor the hull meets that target: its time is seconds to
+    minutes a link). Which one a link gets is decided robot-wide (`choose.choose_auto`)."""
+    menu: list[tuple[_Made, Fidelity]] = []
     notes = []
     for method in options.auto_order:
+        if method == "coacd" and any(m.hausdorff_percent <= options.target_percent
+                                     for _, m in menu):
+            continue
         try:
-            made, measured = _make_measured(method, vertices, faces, options)
+            if method == "decimate":
+                menu.extend(_decimate_ladder(vertices, faces, options))
+            elif method == "hull":
+                menu.extend(_hull_ladder(vertices, faces, options))
+            else:
+                menu.append(MAKERS[method](vertices, faces, options))
         except (NoVolumeError, ImportError) as error:
             notes.append(f"{method}: {error}")
-            continue
-        if any(f.severity == "error" for f in made.findings):
-            notes.append(f"{method}: {made.findings[0].message}")
-            continue
-        made = replace(made, findings=tuple(f for f in made.findings
-                                            if f.code != "over-tolerance"))
-        notes.append(f"{method} {measured.hausdorff_percent:.2f} %")
-        if measured.hausdorff_percent <= options.target_percent:
-            return replace(made, detail=f"auto ({', '.join(notes)}): {made.detail}"), measured
-        tried.append((made, measured))
-    if not tried:
+    menu = [(made, m) for made, m in menu if not any(f.severity == "error"
+                                                      for f in made.findings)]
+    if not menu:
         raise NoVolumeError("no method produced geometry: " + "; ".join(notes))
-    made, measured = min(tried, key=lambda pair: pair[1].hausdorff_percent)
-    finding = Finding("target-not-met", "warning",
-                      f"no method met the target of {options.target_percent:g} % "
-                      f"({', '.join(notes)}); kept the most faithful, {made.method}: "
-                      f"accept --target {_round_up(measured.hausdorff_percent)}")
-    return replace(made, detail=f"auto: {made.detail}",
-                   findings=made.findings + (finding,)), measured
+    return menu
+
+
+def _hull_ladder(vertices: np.ndarray, faces: np.ndarray,
+                 options: CollisionOptions) -> list[tuple[_Made, Fidelity]]:
+    """The convex hull reduced to AUTO_HULL_VERTICES (fewer triangles: 2V - 4), measured,
+    smallest first until one meets the target of the link's own diagonal; else the full hull
+    (fitted to the engine's vertices per hull)."""
+    full = _hull(vertices, faces, options)
+    hull = full.parts[0]
+    assert isinstance(hull, MeshPart)  # `_hull` makes one hull
+    index = SurfaceIndex(vertices, faces)
+    ladder = []
+    for count in (c for c in AUTO_HULL_VERTICES if c < len(hull.vertices)):
+        reduced = reduce_hull(hull, count)
+        made = _Made("hull", (reduced,), f"hull reduced to {len(reduced.vertices)} vertices")
+        measured = _measure(vertices, faces, made.parts, options, index)
+        ladder.append((made, measured))
+        if measured.hausdorff_percent <= options.target_percent:
+            return ladder
+    return ladder + [(full, _measure(vertices, faces, full.parts, options, index))]
+
+
+def _decimate_ladder(vertices: np.ndarray, faces: np.ndarray,
+                     options: CollisionOptions) -> list[tuple[_Made, Fidelity]]:
+    """Decimations at AUTO_DECIMATE_BUDGETS (below the input's faces and the engine's faces
+    per mesh), measured, until one meets the target of the link's own diagonal."""
+    index = SurfaceIndex(vertices, faces)
+    cap = min(len(faces), options.limits.max_mesh_faces)
+    budgets = [b for b in AUTO_DECIMATE_BUDGETS if b < cap] or [cap]
+    ladder = []
+    for budget in budgets:
+        made = _decimate_once(vertices, faces, budget, options)
+        measured = _measure(vertices, faces, made.parts, options, index)
+        ladder.append((made, measured))
+        if measured.hausdorff_percent <= options.target_percent and not any(
+                f.severity == "error" for f in made.findings):
+            break
+    return ladder
 
 
 def _measure(vertices: np.ndarray, faces: np.ndarray, parts: tuple[Part, ...],

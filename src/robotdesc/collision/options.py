@@ -7,10 +7,16 @@ from dataclasses import asdict, dataclass, field
 from typing import Any
 
 from robotdesc.collision.limits import EngineLimits
+from robotdesc.collision.methods import DEFAULT_METHOD, METHOD_TABLE, METHODS_BY_NAME
 from robotdesc.errors import CollisionOptionError
 
-#: The methods, in the order `auto` tries them by default (cheapest for an engine first).
-METHODS = ("decimate", "hull", "coacd", "primitive", "auto")
+#: The method names (the table: `robotdesc.collision.methods`).
+METHODS = tuple(m.name for m in METHOD_TABLE)
+#: auto: the robot-wide triangle budget by default, sized from the Engineer papers: their
+#: hand-made collision had 5,644 polygons for the whole crawler (001, Table II).
+DEFAULT_BUDGET = 5000
+#: auto: the version of the candidate menu (its ladders); raise it when they change.
+AUTO_MENU_VERSION = 2
 PRIMITIVE_KINDS = ("box", "cylinder", "sphere", "capsule")
 #: The decimation engines (mirrors robotdesc.collision.decimate.ENGINES, kept import-free).
 DECIMATORS = ("meshoptimizer", "fast-simplification")
@@ -45,16 +51,21 @@ class CollisionOptions:
         seed: coacd: random seed (fixed, so outputs are reproducible).
         primitives: primitive: the kinds tried, among PRIMITIVE_KINDS.
         target_percent: fidelity target: symmetric Hausdorff distance as % of the link's
-            bounding-box diagonal (decimate results over it are findings; auto picks the
-            first method under it).
-        auto_order: auto: methods tried, in order.
+            bounding-box diagonal (decimate results over it are findings); auto: % of the
+            robot's largest link diagonal, one tolerance in metres for every link.
+        auto_order: auto: the methods whose results are candidates (coacd only for a link
+            that no primitive nor its hull fits within the target).
+        budget_triangles: auto: the robot-wide budget of triangles (summed over every
+            link, identical links counted each time; primitives count none); 0: none.
+        no_contact: auto: link name patterns left out of contact on request (no
+            `<collision>`), e.g. a belt that touches the ground only through its wheels.
         samples: surface points sampled per direction for the distances.
         source: "visual" (derive from the visual meshes, default) or "collision".
         mesh_timeout_s: wall-clock limit of one link's worker (s).
         limits: the engine limits checked.
     """
 
-    method: str = "decimate"
+    method: str = DEFAULT_METHOD
     ratio: float = 0.02
     faces: int | None = None
     min_faces: int = 64
@@ -71,7 +82,9 @@ class CollisionOptions:
     seed: int = 0
     primitives: tuple[str, ...] = PRIMITIVE_KINDS
     target_percent: float = 1.0
-    auto_order: tuple[str, ...] = ("primitive", "hull", "coacd", "decimate")
+    auto_order: tuple[str, ...] = ("primitive", "hull", "decimate", "coacd")
+    budget_triangles: int = DEFAULT_BUDGET
+    no_contact: tuple[str, ...] = ()
     samples: int = 2000
     source: str = "visual"
     mesh_timeout_s: float = 300.0
@@ -127,6 +140,9 @@ class CollisionOptions:
             methods = "decimate, hull, coacd, primitive"
             yield ("auto_order", self.auto_order,
                    f"auto order must list methods among {methods}; got {given}")
+        if self.budget_triangles < 0:
+            yield ("budget_triangles", self.budget_triangles,
+                   f"the triangle budget must be 0 (none) or positive, got {self.budget_triangles}")
         for name, low in (("target_percent", 0.0), ("samples", 9), ("mesh_timeout_s", 0.0)):
             if not getattr(self, name) > low:
                 yield name, getattr(self, name), "target, samples and timeout must be positive"
@@ -154,11 +170,11 @@ class CollisionOptions:
         data["hull_vertex_limit"] = self.limits.max_hull_vertices
         data["primitives"] = list(self.primitives)
         data["auto_order"] = list(self.auto_order)
-        if self.method == "auto":
-            relevant = {name for names in _METHOD_FIELDS.values() for name in names}
-            relevant.add("auto_order")
-        else:
-            relevant = set(_METHOD_FIELDS.get(self.method, ()))
+        data["no_contact"] = sorted(self.no_contact)
+        relevant = set(METHODS_BY_NAME[self.method].fields)
+        if self.method == "auto":  # the menu's ladders are code: a new one, a new key
+            data["auto_menu"] = AUTO_MENU_VERSION
+            relevant.add("auto_menu")
         if not self.adapt or (self.method == "decimate" and self.faces is not None):
             relevant -= {"adapt", *_ADAPT_FIELDS}  # nothing adapts: the key of before
         return {name: value for name, value in data.items()
@@ -169,12 +185,3 @@ class CollisionOptions:
 _COMMON_FIELDS = ("method", "seed", "target_percent", "samples", "source")
 #: The engine limits `adapt` fits results to (in a key only when something adapts).
 _ADAPT_FIELDS = ("mesh_face_limit", "hull_vertex_limit")
-#: The fields each method reads (the engine limits too, when `adapt` fits results to them).
-_METHOD_FIELDS = {
-    "decimate": ("ratio", "faces", "min_faces", "decimator", "adapt", "mesh_face_limit"),
-    "hull": ("adapt", "hull_vertex_limit"),
-    "coacd": ("threshold", "max_hulls", "hull_vertices", "coacd_iterations", "coacd_depth",
-              "coacd_nodes", "preprocess_resolution", "coacd_input_faces", "adapt",
-              "hull_vertex_limit"),
-    "primitive": ("primitives",),
-}

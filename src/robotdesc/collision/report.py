@@ -16,6 +16,26 @@ def table_rows(result: CollisionResult) -> list[tuple[str, ...]]:
     return [_row(o.report) for o in result.outcomes]
 
 
+def choice_lines(result: CollisionResult) -> list[str]:
+    """Method auto: what each link got and why, identical links (same key) on one line:
+    `LINK (+N identical): METHOD, T triangles, Hausdorff D mm: WHY`."""
+    if result.options is None or getattr(result.options, "method", "") != "auto":
+        return []
+    groups: dict[tuple[str, str], list[LinkReport]] = {}
+    for outcome in result.outcomes:  # identical and given the same (not left out of contact)
+        group = (outcome.key or outcome.report.link, outcome.report.method)
+        groups.setdefault(group, []).append(outcome.report)
+    lines = ["auto chose:"]
+    for reports in groups.values():
+        r = reports[0]
+        more = f" (+{len(reports) - 1} identical)" if len(reports) > 1 else ""
+        distance = "-" if r.hausdorff is None else f"{1000 * r.hausdorff:.2f} mm"
+        why = r.detail.split("; ")[0].removeprefix("auto: ")
+        lines.append(f"  {r.link}{more}: {r.method}, {r.faces_after:,} triangles, "
+                     f"Hausdorff {distance}: {why}")
+    return lines
+
+
 def finding_lines(result: CollisionResult) -> list[str]:
     """Each link's findings, one line each."""
     return [f"{outcome.report.link}: {finding.severity}: [{finding.code}] {finding.message}"
@@ -26,8 +46,9 @@ def total_line(result: CollisionResult) -> str:
     """The totals, comparable to Table II of the Engineer paper."""
     totals = result.totals()
     ratio = f"{totals['reduction']:.0f}:1" if totals["reduction"] else "-"
+    primitives = f"{totals['primitives']} primitives, " if totals["primitives"] else ""
     return (f"total: {totals['written']}/{totals['links']} links, "
-            f"faces {totals['faces_before']}->{totals['faces_after']} ({ratio}), "
+            f"faces {totals['faces_before']}->{totals['faces_after']} ({ratio}), {primitives}"
             f"{totals['hulls']} hulls, {totals['cached']} cached (*), "
             f"{result.seconds:.2f} s with {result.jobs} job(s)")
 

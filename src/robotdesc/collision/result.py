@@ -113,16 +113,22 @@ class LinkOutcome:
 
     Attributes:
         key: the hash of the link's sources and the parameters (cache and manifest key).
+        alternatives: method auto: every candidate made and measured for the link
+            (primitive, hull, decimations at rising budgets, CoACD pieces), from which the
+            robot-wide choice (`robotdesc.collision.choose`) picks; empty otherwise.
     """
 
     report: LinkReport
     parts: tuple[Part, ...] = ()
     key: str = ""
+    alternatives: tuple[LinkOutcome, ...] = ()
 
     @property
     def written(self) -> bool:
-        """True when the link gets new geometry."""
-        return bool(self.parts) and self.report.status in ("ok", "warning")
+        """True when the link gets new geometry (none at all when left out of contact on
+        request: method "none")."""
+        return (bool(self.parts) or self.report.method == "none") \
+            and self.report.status in ("ok", "warning")
 
 
 @dataclass(frozen=True)
@@ -156,7 +162,10 @@ class CollisionResult:
         after = sum(r.faces_after for r in reports)
         return {"links": len(self.outcomes), "written": len(reports), "faces_before": before,
                 "faces_after": after, "reduction": (before / after) if after else None,
-                "hulls": sum(r.hulls for r in reports), "seconds": self.seconds,
+                "hulls": sum(r.hulls for r in reports),
+                "primitives": sum(1 for o in self.outcomes if o.written
+                                  for p in o.parts if isinstance(p, PrimitivePart)),
+                "seconds": self.seconds,
                 "worker_seconds": sum(o.report.seconds for o in self.outcomes),
                 "cached": sum(1 for o in self.outcomes if o.report.cached)}
 

@@ -14,6 +14,7 @@ import multiprocessing
 import os
 import signal
 import sys
+import threading
 import time
 import traceback
 from contextlib import contextmanager
@@ -94,14 +95,46 @@ def _main_module_hidden() -> Iterator[None]:
 
 
 def _child(function: Callable[[Any], Any], argument: Any, connection: _Pipe) -> None:
+    """Run one task and send its outcome. Ctrl-C is the parent's to handle (it stops the
+    children); a parent gone meanwhile (its end of the pipe closed) ends the child quietly,
+    without a BrokenPipeError traceback."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     try:
         result = function(argument)
     except BaseException as error:  # reported to the parent, which decides; not swallowed
-        connection.send(("exception", f"{type(error).__name__}: {error}",
-                         traceback.format_exc()))
+        message: _Message = ("exception", f"{type(error).__name__}: {error}",
+                             traceback.format_exc())
     else:
-        connection.send(("ok", result, ""))
-    connection.close()
+        message = ("ok", result, "")
+    try:
+        connection.send(message)
+        connection.close()
+    except (BrokenPipeError, ConnectionResetError, EOFError, OSError):
+        os._exit(1)
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM arrived while tasks ran: the running ones were stopped (the command line
+    then ends as interrupted, without a traceback)."""
+
+
+@contextmanager
+def _sigterm_stops_tasks() -> Iterator[None]:
+    """Meanwhile, SIGTERM raises `Terminated` in the main thread (so that `run_tasks`'s
+    `finally` stops its children: killed by their parent's default SIGTERM action, they
+    would run on, orphaned); the previous handling is restored after."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def terminate(signum: int, frame: object) -> None:
+        raise Terminated()
+
+    previous = signal.signal(signal.SIGTERM, terminate)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
 
 
 def run_tasks(function: Callable[[Any], Any], arguments: Sequence[Any], *, jobs: int,
@@ -119,6 +152,12 @@ def run_tasks(function: Callable[[Any], Any], arguments: Sequence[Any], *, jobs:
     Returns:
         Per argument, in order: the function's result or a `TaskFailure`.
     """
+    with _sigterm_stops_tasks():
+        return _run_tasks(function, arguments, jobs, timeout_s, on_done)
+
+
+def _run_tasks(function: Callable[[Any], Any], arguments: Sequence[Any], jobs: int,
+               timeout_s: float, on_done: Callable[[int, Any], None] | None) -> list[Any]:
     context = _context()
     results: list[Any] = [None] * len(arguments)
     pending = list(range(len(arguments)))[::-1]

@@ -18,8 +18,15 @@ import sys
 from dataclasses import replace
 
 from robotdesc.collision.limits import ENGINE_LIMITS
-from robotdesc.collision.options import METHODS, CollisionOptions
-from robotdesc.collision.report import HEADER, finding_lines, table_rows, total_line
+from robotdesc.collision.methods import DEFAULT_METHOD, METHOD_TABLE
+from robotdesc.collision.options import DEFAULT_BUDGET, METHODS, CollisionOptions
+from robotdesc.collision.report import (
+    HEADER,
+    choice_lines,
+    finding_lines,
+    table_rows,
+    total_line,
+)
 from robotdesc.commands.inputs import EXIT_FINDINGS, EXIT_OK, single_input
 from robotdesc.errors import UsageError
 from robotdesc.expansion import expand_file
@@ -38,8 +45,18 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser], *,
                     "auto) from the visual meshes, measure its fidelity, write it to DIR.")
     parser.add_argument("inputs", nargs="+", metavar="FILE | name:=value",
                         help="the description, then xacro arguments")
-    parser.add_argument("--method", default="decimate",
-                        choices=METHODS)
+    parser.add_argument("--method", default=DEFAULT_METHOD, choices=METHODS,
+                        help="; ".join(f"{m.name}: {m.summary}" for m in METHOD_TABLE)
+                        + f" (default {DEFAULT_METHOD})")
+    parser.add_argument("--budget", type=int, default=DEFAULT_BUDGET, metavar="TRIANGLES",
+                        help="auto: triangles of the whole robot's collision (primitives "
+                             f"count none; 0: no budget; default {DEFAULT_BUDGET:,}, under "
+                             "the Engineer papers' hand-made 5,644)")
+    parser.add_argument("--no-contact", action="append", default=[], metavar="LINKS",
+                        help="auto: leave these links (comma-separated shell patterns, "
+                             "e.g. '*_track_link') out of contact: no <collision>, e.g. a "
+                             "belt that touches the ground only through its wheels (also "
+                             "[meshes] no-contact in the config)")
     parser.add_argument("--out", metavar="DIR", help="output folder (required unless "
                         "only reporting with --dry-run)")
     parser.add_argument("--check", action="store_true",
@@ -76,7 +93,8 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser], *,
                         help="primitive: kinds tried (comma-separated)")
     parser.add_argument("--target", type=float, default=1.0, metavar="PERCENT",
                         help="fidelity target: Hausdorff distance in %% of the link's "
-                             "bounding diagonal (default 1)")
+                             "bounding diagonal; auto: in %% of the robot's largest link's, "
+                             "one tolerance in mm for every link (default 1)")
     parser.add_argument("--engine", choices=("physx", "mujoco", "bullet"), default="physx",
                         help="engine limits to check (default physx)")
     parser.add_argument("--limit-hulls", type=int, help="override the engine's hulls per link")
@@ -112,7 +130,9 @@ def run(ns: argparse.Namespace) -> int:
             max_hulls=ns.max_hulls, hull_vertices=ns.hull_vertices, seed=ns.seed,
             primitives=tuple(p.strip() for p in ns.primitives.split(",") if p.strip()),
             target_percent=ns.target, source=ns.source, mesh_timeout_s=ns.mesh_timeout,
-            limits=limits).validated()
+            budget_triangles=ns.budget, limits=limits,
+            no_contact=_no_contact(ns.no_contact, single.config.meshes.no_contact)
+        ).validated()
     except ValueError as error:
         raise UsageError(str(error)) from None
     if ns.jobs is not None and ns.jobs < 1:
@@ -169,6 +189,14 @@ def run(ns: argparse.Namespace) -> int:
     else:
         sys.stdout.write(render_table(HEADER, table_rows(result), wrap=0,
                                       right=(4, 5, 6, 7, 8, 9)))
-        sys.stdout.write("".join(line + "\n" for line in (*finding_lines(result),
+        sys.stdout.write("".join(line + "\n" for line in (*choice_lines(result),
+                                                           *finding_lines(result),
                                                            total_line(result))))
     return EXIT_FINDINGS if result.failed else EXIT_OK
+
+
+def _no_contact(given: list[str], configured: tuple[str, ...]) -> tuple[str, ...]:
+    """The links left out of contact: `--no-contact` (comma-separated, repeatable) and the
+    config's `[meshes] no-contact`, each pattern once."""
+    patterns = [p.strip() for text in given for p in text.split(",") if p.strip()]
+    return tuple(dict.fromkeys([*configured, *patterns]))

@@ -16,6 +16,8 @@ import logging
 import sys
 from typing import TYPE_CHECKING, TextIO
 
+from robotdesc.collision.methods import DEFAULT_METHOD
+from robotdesc.collision.options import METHODS
 from robotdesc.commands.inputs import SingleInput, single_input
 from robotdesc.errors import InputError, UsageError
 from robotdesc.progress import progress_for
@@ -58,8 +60,16 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser], *,
                         help="let the robot's links collide with each other")
     parser.add_argument("--no-rtf", action="store_true",
                         help="skip the real-time factor comparison")
-    parser.add_argument("--method", default="decimate",
-                        help="collision generation method for 'generated' (default: decimate)")
+    parser.add_argument("--method", default=DEFAULT_METHOD, choices=METHODS,
+                        help="collision generation method for 'generated' (default: "
+                             f"{DEFAULT_METHOD}, as `robotdesc collision`)")
+    parser.add_argument("--budget", type=int, default=None, metavar="TRIANGLES",
+                        help="auto: the generated collision's triangle budget (default: "
+                             "`robotdesc collision`'s)")
+    parser.add_argument("--no-contact", action="append", default=[], metavar="LINKS",
+                        help="auto: links left out of contact in the generated collision "
+                             "(comma-separated shell patterns; also [meshes] no-contact in "
+                             "the config)")
     parser.add_argument("--engine", choices=("mujoco", "dart"), default="mujoco",
                         help="physics engine: mujoco (robotdesc[sim], collides convex hulls) "
                              "or dart (robotdesc[dart], collides triangles, as Gazebo)")
@@ -190,7 +200,19 @@ def run_engine_checks(ns: argparse.Namespace, single: SingleInput) -> int:
                                  self_collision=ns.self_collision)
 
     def progress(label: str, simulated: float, total: float, wall: float) -> None:
-        bar.update(simulated, total, f"{label}, RTF {simulated / wall if wall > 0 else 0:.3g}")
+        detail = f"{label}, RTF {simulated / wall if wall > 0 else 0:.3g} (wall)"
+        bar.update(simulated, total, detail)
+        if simulated > 0:
+            bar.note(f"{label}: {simulated:.1f} of {total:g} s simulated in {wall:.1f} s, "
+                     f"RTF {simulated / wall if wall > 0 else 0:.3g} (wall)")
+
+    generate: dict[str, object] = {}
+    if ns.budget is not None:
+        generate["budget_triangles"] = ns.budget
+    no_contact = tuple(dict.fromkeys([*single.config.meshes.no_contact, *(
+        p.strip() for text in ns.no_contact for p in text.split(",") if p.strip())]))
+    if no_contact:
+        generate["no_contact"] = no_contact
 
     with progress_for(ns, f"sim {engine.name}", unit="s simulated") as bar:
         document: dict[str, object] = {"robot": loaded.robot.name, "engine": engine.name}
@@ -201,10 +223,11 @@ def run_engine_checks(ns: argparse.Namespace, single: SingleInput) -> int:
         if variants is not None:
             comparison = compare_variants(engine, loaded.robot, loaded.meshes, variants,
                                           scene_options, ns.seconds, hold, ns.method,
-                                          package_map, progress)
+                                          package_map, progress, bar.note, generate)
             document["compare"] = comparison.as_dict()
             if text:
-                write_comparison(sys.stdout, loaded.robot.name, comparison)
+                write_comparison(sys.stdout, loaded.robot.name, comparison,
+                                 verbose=getattr(ns, "verbose", 0) > 0)
         if ns.drive:
             report = _drive(ns, single, loaded, engine, scene_options, hold, progress)
             document["drive"] = report.as_dict()
@@ -264,24 +287,40 @@ def _names(text: str) -> tuple[str, ...]:
     return tuple(part.strip() for part in text.split(",") if part.strip())
 
 
-def write_comparison(out: TextIO, robot: str, comparison: Comparison) -> None:
-    """The papers' table: one line per collision variant, then the ratios."""
+def write_comparison(out: TextIO, robot: str, comparison: Comparison,
+                     verbose: bool = False) -> None:
+    """The papers' table: per collision variant its triangles and primitives, the real-time
+    factor by CPU time and its ratio to the first variant's, then wall-time figures and the
+    engine's warnings (counted; with `verbose`, each kind with the links it named)."""
     from robotdesc.sim.compare import PAPER_SIMPLE_RTF, PAPER_VISUAL_RTF
 
     first = comparison.variants[0]
     out.write(f"{robot}: real-time factor in {comparison.engine}, time step "
               f"{comparison.timestep * 1000:g} ms, {first.simulated:g} s simulated per variant\n")
-    out.write(f"  {'collision':<10} {'geoms':>6} {'triangles':>10} {'RTF cpu':>9} "
-              f"{'RTF wall':>9} {'collision/step':>15} {'step':>10}\n")
+    out.write(f"  {'collision':<10} {'triangles':>10} {'primitives':>10} {'RTF cpu':>9} "
+              f"{'ratio':>7} {'RTF wall':>9} {'step':>10} {'warnings':>9}\n")
     for v in comparison.variants:
-        out.write(f"  {v.label:<10} {v.geoms:6d} {v.triangles:10d} {v.rtf_cpu:9.3g} "
-                  f"{v.rtf_wall:9.3g} {v.collision_per_step * 1000:12.3g} ms "
-                  f"{v.step_wall * 1000:7.3g} ms\n")
-    for v in comparison.variants[1:]:
-        out.write(f"  ratio {v.label} / {first.label} (RTF by CPU time): "
-                  f"{comparison.ratio(v):.2f}\n")
-    out.write(f"  papers (Gazebo): visual {PAPER_VISUAL_RTF:g}, simple collision "
-              f"{PAPER_SIMPLE_RTF:g}: ratio {PAPER_SIMPLE_RTF / PAPER_VISUAL_RTF:.0f}\n")
+        out.write(f"  {v.label:<10} {v.triangles:10,d} {v.primitives:10d} {v.rtf_cpu:9.3g} "
+                  f"{comparison.ratio(v):6.2f}x {v.rtf_wall:9.3g} {v.step_wall * 1000:7.3g} ms "
+                  f"{v.warnings:9d}\n")
+    out.write(f"  ratio: each variant's RTF by CPU time over the {first.label} one's; papers "
+              f"(Gazebo): visual {PAPER_VISUAL_RTF:g}, simple collision {PAPER_SIMPLE_RTF:g}: "
+              f"ratio {PAPER_SIMPLE_RTF / PAPER_VISUAL_RTF:.0f}x\n")
+    for v in comparison.variants:
+        if not v.messages:
+            continue
+        if not verbose:
+            out.write(f"  {v.label}: {v.warnings} {comparison.engine} warnings of "
+                      f"{len(v.messages)} kinds (-v lists them)\n")
+            continue
+        out.write(f"  {v.label}: {v.warnings} {comparison.engine} warnings:\n")
+        for message in v.messages:
+            links = ", ".join(f"{link} ({count})" if count > 1 else link
+                              for link, count in message.links[:8])
+            more = f" and {len(message.links) - 8} more links" if len(message.links) > 8 \
+                else ""
+            out.write(f"    {message.count:6d}x {message.text}"
+                      + (f"  [links: {links}{more}]" if links else "") + "\n")
 
 
 def write_drive(out: TextIO, report: DriveReport) -> None:

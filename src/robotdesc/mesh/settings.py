@@ -20,6 +20,9 @@ class MeshSettings:
         allow_absolute_paths: accept `file://` URIs and absolute mesh paths (off: such a
             description works only on the machine that wrote it).
         collision_triangle_budget: the most triangles one collision mesh should have.
+        no_contact: links (shell patterns) that `robotdesc collision` (method auto) and
+            `robotdesc sim`'s generated collision leave out of contact, e.g. a track's belt
+            that touches the ground only through its wheels (`no-contact = ["*_track_link"]`).
         cache: keep mesh summaries in the mesh cache (docs/meshes.md); off: recompute.
 
     Raises:
@@ -33,6 +36,7 @@ class MeshSettings:
     allow_absolute_paths: bool = False
     collision_triangle_budget: int = 10_000
     cache: bool = True
+    no_contact: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if self.expected_mass is not None and not self.expected_mass > 0:

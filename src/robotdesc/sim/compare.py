@@ -15,11 +15,13 @@ import time
 from dataclasses import dataclass
 from typing import Any, Callable, Mapping, Sequence
 
+from robotdesc.collision.methods import DEFAULT_METHOD
 from robotdesc.errors import SimOptionError
 from robotdesc.model.elements import Robot
 from robotdesc.sim.engine import Engine, EngineScene
 from robotdesc.sim.hold import HoldOptions
 from robotdesc.sim.meshes import MeshAssets
+from robotdesc.sim.native_log import NativeMessage
 from robotdesc.sim.scene import SceneOptions
 from robotdesc.sim.variants import COLLISION_MODES, generated_parts, visual_as_collision
 
@@ -27,11 +29,13 @@ log = logging.getLogger(__name__)
 
 #: The papers' figures (001, Table II; Gazebo): RTF with visual meshes, with simple ones.
 PAPER_VISUAL_RTF, PAPER_SIMPLE_RTF = 0.2, 1.0
-#: Progress is reported while a run takes longer than this (wall s), then this often.
-PROGRESS_PERIOD = 2.0
+#: Progress is reported each time this much more time is simulated (s).
+PROGRESS_SIMULATED = 0.1
 
 #: progress(label, simulated s, total s, wall s so far)
 Progress = Callable[[str, float, float, float], None]
+#: note(text): a line about what starts now (a variant built, collision generated)
+Note = Callable[[str], None]
 
 
 @dataclass(frozen=True)
@@ -48,6 +52,9 @@ class VariantTiming:
         collision_per_step: wall time of one collision pass (s).
         build: wall time spent building the scene (s).
         lowest: the robot's lowest point at the end (m).
+        primitives: collision shapes that are primitives.
+        messages: what the engine's native code printed (DART's warnings), per kind with
+            the links named.
     """
 
     label: str
@@ -61,6 +68,13 @@ class VariantTiming:
     collision_per_step: float
     build: float
     lowest: float
+    primitives: int = 0
+    messages: tuple[NativeMessage, ...] = ()
+
+    @property
+    def warnings(self) -> int:
+        """Native messages printed in all."""
+        return sum(m.count for m in self.messages)
 
     @property
     def rtf_cpu(self) -> float:
@@ -101,7 +115,11 @@ class Comparison:
                               "wall_s": v.wall, "rtf_cpu": v.rtf_cpu, "rtf_wall": v.rtf_wall,
                               "collision_per_step_s": v.collision_per_step,
                               "step_wall_s": v.step_wall, "build_s": v.build,
-                              "lowest_m": v.lowest, "ratio_to_first": self.ratio(v)}
+                              "lowest_m": v.lowest, "ratio_to_first": self.ratio(v),
+                              "primitives": v.primitives,
+                              "native_messages": [{"text": m.text, "count": m.count,
+                                                   "links": dict(m.links)}
+                                                  for m in v.messages]}
                              for v in self.variants]}
 
 
@@ -122,15 +140,18 @@ def parse_variants(text: str) -> tuple[str, ...]:
 
 def build_variant(engine: Engine, robot: Robot, meshes: MeshAssets, label: str,
                   options: SceneOptions, hold: HoldOptions = HoldOptions(),
-                  generate_method: str = "decimate",
+                  generate_method: str = DEFAULT_METHOD,
                   package_map: Sequence[tuple[str, str]] = (),
-                  parts: Mapping[str, Sequence[Any]] | None = None) -> EngineScene:
-    """The scene with one collision variant (`parts`: generated collision, made when None)."""
+                  parts: Mapping[str, Sequence[Any]] | None = None,
+                  generate: Mapping[str, Any] | None = None) -> EngineScene:
+    """The scene with one collision variant (`parts`: generated collision, made when None
+    with `generate_method` and the `generate_collision` options in `generate`)."""
     if label == "visual":
         robot = visual_as_collision(robot)
     elif label == "generated":
         if parts is None:
-            parts = generated_parts(robot, method=generate_method, package_map=package_map)
+            parts = generated_parts(robot, method=generate_method, package_map=package_map,
+                                    **(generate or {}))
         return engine.build(robot, meshes, options, hold, parts)
     return engine.build(robot, meshes, options, hold)
 
@@ -141,21 +162,22 @@ def time_scene(scene: EngineScene, label: str, seconds: float, build: float = 0.
     scene.reset()
     steps = max(1, round(seconds / scene.timestep))
     chunk = max(1, min(steps, round(0.01 / scene.timestep)))  # 10 ms of simulated time
+    every = max(1, round(PROGRESS_SIMULATED / scene.timestep))
     wall_start, cpu_start = time.perf_counter(), time.process_time()
-    done, reported = 0, wall_start
+    done = 0
     while done < steps:
-        count = min(chunk, steps - done)
+        count = min(chunk, steps - done, every - done % every)
         scene.step(count)
         done += count
-        now = time.perf_counter()
-        if progress is not None and now - reported >= PROGRESS_PERIOD:
-            progress(label, done * scene.timestep, steps * scene.timestep, now - wall_start)
-            reported = now
+        if progress is not None and (done % every == 0 or done == steps):
+            progress(label, done * scene.timestep, steps * scene.timestep,
+                     time.perf_counter() - wall_start)
     wall, cpu = time.perf_counter() - wall_start, time.process_time() - cpu_start
     passes = [scene.collision_seconds() for _ in range(collision_passes)]
     timing = VariantTiming(label, scene.engine, scene.geoms, scene.triangles,
                            steps * scene.timestep, steps, cpu, wall,
-                           sum(passes) / len(passes), build, scene.lowest_point())
+                           sum(passes) / len(passes), build, scene.lowest_point(),
+                           scene.primitives, scene.native_messages())
     log.info("%s %s: RTF %.3g (CPU) %.3g (wall), %d triangles", scene.engine, label,
              timing.rtf_cpu, timing.rtf_wall, timing.triangles)
     return timing
@@ -163,15 +185,50 @@ def time_scene(scene: EngineScene, label: str, seconds: float, build: float = 0.
 
 def compare_variants(engine: Engine, robot: Robot, meshes: MeshAssets,
                      variants: Sequence[str], options: SceneOptions, seconds: float,
-                     hold: HoldOptions = HoldOptions(), generate_method: str = "decimate",
+                     hold: HoldOptions = HoldOptions(), generate_method: str = DEFAULT_METHOD,
                      package_map: Sequence[tuple[str, str]] = (),
-                     progress: Progress | None = None) -> Comparison:
-    """Time each collision variant in `engine`, one after the other, in this process."""
+                     progress: Progress | None = None, note: Note | None = None,
+                     generate: Mapping[str, Any] | None = None) -> Comparison:
+    """Time each collision variant in `engine`, one after the other, in this process
+    (`note` gets a line as each variant starts and ends)."""
     timings = []
-    for label in variants:
+    for number, label in enumerate(variants, 1):
         started = time.perf_counter()
+        if note is not None:
+            what = f" (collision generated: method {generate_method})" \
+                if label == "generated" else ""
+            note(f"variant {number} of {len(variants)}: {label}{what}, building the scene")
+        if progress is not None:  # a new variant: nothing simulated yet
+            progress(label, 0.0, seconds, 0.0)
+        generating = dict(generate or {})
+        if note is not None and label == "generated":
+            generating["progress"] = _generation_notes(note)
         scene = build_variant(engine, robot, meshes, label, options, hold, generate_method,
-                              package_map)
+                              package_map, generate=generating)
         built = time.perf_counter() - started
-        timings.append(time_scene(scene, label, seconds, built, progress))
+        if note is not None:
+            note(f"{label}: {scene.triangles:,} triangles, {scene.primitives} primitives, "
+                 f"built in {built:.1f} s; simulating {seconds:g} s")
+        timing = time_scene(scene, label, seconds, built, progress)
+        timings.append(timing)
+        if note is not None:
+            note(f"{label}: RTF {timing.rtf_cpu:.3g} by CPU time, {timing.rtf_wall:.3g} by "
+                 f"wall time, {timing.warnings} engine warnings")
     return Comparison(engine.name, options.timestep, tuple(timings))
+
+
+#: While collision is generated, a line at most this often (wall s).
+GENERATION_NOTE_PERIOD = 5.0
+
+
+def _generation_notes(note: Note) -> Callable[[int, int, str], None]:
+    """A `generate_collision` progress callback writing a note at most every few seconds."""
+    last = [time.perf_counter()]
+
+    def progress(done: int, total: int, link: str) -> None:
+        now = time.perf_counter()
+        if done == total or now - last[0] >= GENERATION_NOTE_PERIOD:
+            last[0] = now
+            note(f"generated: collision of {done} of {total} links made"
+                 + (f" ({link})" if link else ""))
+    return progress

@@ -13,16 +13,11 @@ Gazebo's velocity interface.
 
 from __future__ import annotations
 
-import contextlib
-import ctypes
 import logging
 import math
-import os
-import re
-import sys
 import tempfile
 import time
-from typing import Any, Iterator, Mapping, Sequence
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 
@@ -34,6 +29,7 @@ from robotdesc.sim.dart_urdf import dart_urdf
 from robotdesc.sim.engine import EngineScene
 from robotdesc.sim.hold import HoldOptions
 from robotdesc.sim.meshes import MeshAssets
+from robotdesc.sim.native_log import NativeMessage, NativeMessages, native_output_caught
 from robotdesc.sim.scene import SceneOptions
 
 log = logging.getLogger(__name__)
@@ -51,24 +47,28 @@ def build_scene(robot: Robot, meshes: MeshAssets, options: SceneOptions,
         SimMeshError: a mesh cannot be resolved or read.
     """
     dart = import_dartpy()
+    messages = NativeMessages(_link_names(robot))
     with tempfile.TemporaryDirectory(prefix="robotdesc-dart-") as scratch:
         urdf = dart_urdf(robot, meshes, scratch, parts, options.collision_from_visual)
-        loader = dart.utils.DartLoader()
         root = _root_link(robot)
         fixed = root is not None and root.name == "world" and root.inertial is None \
             and not root.collisions
-        loader.setOptions(dart.utils.DartLoaderOptions(
-            defaultRootJointType=(dart.utils.DartLoaderRootJointType.FIXED if fixed
-                                  else dart.utils.DartLoaderRootJointType.FLOATING),
-            defaultInertia=dart.dynamics.Inertia(0.0, [0.0, 0.0, 0.0], np.zeros((3, 3)))))
-        with native_output_logged(log):
+        with native_output_caught(log, messages):  # DART warns of the massless default
+            loader = dart.utils.DartLoader()
+            loader.setOptions(dart.utils.DartLoaderOptions(
+                defaultRootJointType=(dart.utils.DartLoaderRootJointType.FIXED if fixed
+                                      else dart.utils.DartLoaderRootJointType.FLOATING),
+                defaultInertia=dart.dynamics.Inertia(0.0, [0.0, 0.0, 0.0],
+                                                     np.zeros((3, 3)))))
             skeleton = loader.parseSkeletonString(urdf.text,
                                                   dart.common.Uri(f"file://{scratch}/"))
     if skeleton is None:
         raise SimModelError("DART cannot load the robot", robot.where.span if robot.where
                             else None)
-    return DartScene(dart, robot, skeleton, urdf.geoms, urdf.triangles, options, hold,
-                     floating=not fixed)
+    scene = DartScene(dart, robot, skeleton, urdf.geoms, urdf.triangles, options, hold,
+                      floating=not fixed, messages=messages)
+    scene.mesh_geoms = urdf.mesh_geoms
+    return scene
 
 
 class DartScene(EngineScene):
@@ -77,7 +77,11 @@ class DartScene(EngineScene):
     engine = "dart"
 
     def __init__(self, dart: Any, robot: Robot, skeleton: Any, geoms: int, triangles: int,
-                 options: SceneOptions, hold: HoldOptions, floating: bool) -> None:
+                 options: SceneOptions, hold: HoldOptions, floating: bool,
+                 messages: NativeMessages | None = None) -> None:
+        self.messages = messages if messages is not None \
+            else NativeMessages(_link_names(robot))
+        self.mesh_geoms = geoms
         self.dart, self.robot, self.skeleton = dart, robot, skeleton
         self._geoms, self._triangles = geoms, triangles
         self.options, self.hold, self.floating = options, hold, floating
@@ -114,14 +118,21 @@ class DartScene(EngineScene):
     def triangles(self) -> int:
         return self._triangles
 
+    @property
+    def primitives(self) -> int:
+        return self._geoms - self.mesh_geoms
+
+    def native_messages(self) -> tuple[NativeMessage, ...]:
+        return self.messages.messages()
+
     def step(self, steps: int = 1) -> None:
         world = self.world
-        with native_output_logged(log):
+        with native_output_caught(log, self.messages):
             for _ in range(steps):
                 world.step(False)  # keep the drive commands (DART clears them)
 
     def reset(self) -> None:
-        with native_output_logged(log):
+        with native_output_caught(log, self.messages):
             self._reset()
 
     def _reset(self) -> None:
@@ -173,7 +184,7 @@ class DartScene(EngineScene):
                     and np.all(np.isfinite(self.skeleton.getVelocities())))
 
     def set_drive(self, targets: Mapping[str, float]) -> None:
-        with native_output_logged(log):
+        with native_output_caught(log, self.messages):
             self._set_drive(targets)
 
     def _set_drive(self, targets: Mapping[str, float]) -> None:
@@ -300,40 +311,11 @@ class DartScene(EngineScene):
             else math.inf
 
 
-@contextlib.contextmanager
-def native_output_logged(logger: logging.Logger) -> Iterator[None]:
-    """Send what native code writes to stdout/stderr meanwhile to `logger` (debug level):
-    DART prints its warnings (zero-mass lumped frames, the contact budget) straight to the
-    terminal."""
-    sys.stdout.flush()
-    sys.stderr.flush()
-    saved = [os.dup(1), os.dup(2)]
-    with tempfile.TemporaryFile() as sink:
-        os.dup2(sink.fileno(), 1)
-        os.dup2(sink.fileno(), 2)
-        try:
-            yield
-        finally:
-            _flush_native()
-            os.dup2(saved[0], 1)
-            os.dup2(saved[1], 2)
-            for fd in saved:
-                os.close(fd)
-            sink.seek(0)
-            for line in sink.read().decode("utf-8", "replace").splitlines():
-                if line.strip():
-                    logger.debug("dart: %s", _ANSI.sub("", line).strip())
-
-
-_ANSI = re.compile(r"\x1b\[[0-9;]*m")
-
-
-def _flush_native() -> None:
-    """Flush C stdio buffers (C++ streams synchronised with stdio write through them)."""
-    try:
-        ctypes.CDLL(None).fflush(None)
-    except (OSError, AttributeError):
-        pass
+def _link_names(robot: Robot) -> dict[str, str]:
+    """Every name DART may print that means a link: links, and joints (their child)."""
+    names = {joint.name: joint.child for joint in robot.joints}
+    names.update({link.name: link.name for link in robot.links})
+    return names
 
 
 def _root_link(robot: Robot) -> Any:

@@ -56,12 +56,14 @@ class DartUrdf:
         geoms: collision shapes of the robot.
         triangles: triangles of its collision meshes (primitives count none).
         mesh_files: the mesh files it refers to (resolved or scratch).
+        mesh_geoms: the collision shapes that are meshes (the others are primitives).
     """
 
     text: str
     geoms: int
     triangles: int
     mesh_files: tuple[str, ...]
+    mesh_geoms: int = 0
 
 
 def dart_urdf(robot: Robot, meshes: MeshAssets, scratch: str,
@@ -100,7 +102,7 @@ def dart_urdf(robot: Robot, meshes: MeshAssets, scratch: str,
         lines.extend(_joint(joint))
     lines.append("</robot>")
     return DartUrdf("\n".join(lines) + "\n", writer.geoms, writer.triangles,
-                    tuple(writer.files))
+                    tuple(writer.files), writer.mesh_geoms)
 
 
 def _inertial(link: Link, moving: bool) -> list[str]:
@@ -154,7 +156,7 @@ class _Writer:
 
     def __init__(self, meshes: MeshAssets, scratch: str) -> None:
         self.meshes, self.scratch = meshes, scratch
-        self.geoms = self.triangles = 0
+        self.geoms = self.triangles = self.mesh_geoms = 0
         self.files: list[str] = []
         self._written: dict[tuple[str, tuple[float, ...]], tuple[str, int]] = {}
 
@@ -164,6 +166,7 @@ class _Writer:
         if isinstance(geometry, MeshRef):
             path, scale, triangles = self._mesh_file(geometry)
             self.triangles += triangles
+            self.mesh_geoms += 1
             inner = f"<mesh filename={quote_attribute(path)} scale=\"%r %r %r\"/>" % scale
         elif isinstance(geometry, Box):
             inner = '<box size="%r %r %r"/>' % tuple(max(s, 1e-6) for s in geometry.size)
@@ -186,6 +189,7 @@ class _Writer:
         write_stl(path, np.asarray(part.vertices, dtype=float)[faces])
         self.files.append(path)
         self.geoms += 1
+        self.mesh_geoms += 1
         self.triangles += len(faces)
         return ["    <collision>", f"      {_origin(Pose())}",
                 f"      <geometry><mesh filename={quote_attribute(path)}/></geometry>",

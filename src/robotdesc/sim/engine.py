@@ -27,6 +27,7 @@ from robotdesc.model.elements import Robot
 from robotdesc.sim.backend import import_dartpy, import_mujoco
 from robotdesc.sim.hold import HoldOptions
 from robotdesc.sim.meshes import MeshAssets
+from robotdesc.sim.native_log import NativeMessage
 from robotdesc.sim.scene import SceneOptions
 
 
@@ -54,6 +55,16 @@ class EngineScene(abc.ABC):
     @abc.abstractmethod
     def triangles(self) -> int:
         """Triangles the engine collides for the robot (MuJoCo: of the meshes' hulls)."""
+
+    @property
+    def primitives(self) -> int:
+        """Collision shapes that are primitives (boxes, cylinders, spheres, ...)."""
+        return 0
+
+    def native_messages(self) -> tuple[NativeMessage, ...]:
+        """What the engine's native code printed since the scene was built, counted per
+        kind and attributed to links (`robotdesc.sim.native_log`)."""
+        return ()
 
     @abc.abstractmethod
     def step(self, steps: int = 1) -> None:

@@ -71,6 +71,11 @@ class MujocoScene(EngineScene):
         return sum(1 for g in range(self.model.ngeom) if self.model.geom_bodyid[g] != 0)
 
     @property
+    def primitives(self) -> int:
+        return sum(1 for g in range(self.model.ngeom) if self.model.geom_bodyid[g] != 0
+                   and self.model.geom_type[g] != self.mujoco.mjtGeom.mjGEOM_MESH)
+
+    @property
     def triangles(self) -> int:
         """Faces of the convex hulls MuJoCo collides (a mesh without a hull: its faces)."""
         model, mujoco = self.model, self.mujoco

@@ -6,6 +6,7 @@ import logging
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
+from robotdesc.collision.methods import DEFAULT_METHOD
 from robotdesc.errors import SimMeshError, SimModelError, SimOptionError
 from robotdesc.model.elements import Robot
 from robotdesc.sim.meshes import MeshAssets
@@ -32,7 +33,7 @@ class SimOptions:
     settle: SettleOptions = field(default_factory=SettleOptions)
     scene: SceneOptions = field(default_factory=SceneOptions)
     collision: str = "as-is"
-    generate_method: str = "decimate"
+    generate_method: str = DEFAULT_METHOD
 
     def __post_init__(self) -> None:
         if self.collision not in COLLISION_MODES:

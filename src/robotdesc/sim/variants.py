@@ -14,6 +14,7 @@ import logging
 from typing import Any, Mapping, Sequence
 
 from robotdesc.collision import generate_collision
+from robotdesc.collision.methods import DEFAULT_METHOD
 from robotdesc.model.elements import Collision, Robot
 
 log = logging.getLogger(__name__)
@@ -29,7 +30,7 @@ def visual_as_collision(robot: Robot) -> Robot:
             for visual in link.visuals)) for link in robot.links))
 
 
-def generated_parts(robot: Robot, *, method: str = "decimate",
+def generated_parts(robot: Robot, *, method: str = DEFAULT_METHOD,
                     package_paths: Sequence[str] = (),
                     package_map: Sequence[tuple[str, str]] = (),
                     **overrides: Any) -> Mapping[str, tuple[Any, ...]]:
