@@ -20,7 +20,7 @@ from robotdesc.inertia.links import (
     mass_of,
     root_links,
 )
-from robotdesc.model.elements import Link, Robot
+from robotdesc.model.elements import Joint, Link, Robot
 from robotdesc.model.tree import parent_joint_of
 from robotdesc.rules.registry import RuleContext, rule
 from robotdesc.source import Provenance
@@ -292,6 +292,18 @@ def inertia_triangle_inequality(robot: Robot, ctx: RuleContext) -> Iterator[Find
                           "largest)", inertial.inertia.where or _where(link), link_element(link))
 
 
+#: A link on a fixed joint lighter than this (kg) is a small fixed part (a 5 g camera or
+#: IMU board): Gazebo and the dynamics libraries lump it into its parent, where its inertia
+#: is lost in the parent's, so I105 does not judge it.
+SMALL_FIXED_MASS = 0.1
+
+
+def _small_fixed_part(link: Link, parents: dict[str, Joint]) -> bool:
+    joint = parents.get(link.name)
+    return (joint is not None and joint.type == "fixed"
+            and mass_of(link) < SMALL_FIXED_MASS)
+
+
 @dataclass(frozen=True)
 class TinyInertiaOptions:
     """Options of I105.
@@ -310,7 +322,9 @@ def implausibly_small_inertia(robot: Robot, ctx: RuleContext) -> Iterator[Findin
     entirely of the densest metal, has moments that small.
 
     The bound: the sum of the principal moments is smallest for a uniform ball, 6/5 m R^2,
-    and the ball is smallest at the highest density (osmium, 22 600 kg/m^3).
+    and the ball is smallest at the highest density (osmium, 22 600 kg/m^3). A link under
+    100 g on a fixed joint (a sensor board) is not judged: it is lumped into its parent,
+    whose inertia hides its own.
 
     Why is this bad?
     Placeholder values such as `ixx="1e-6"` on a 1 kg link make the link spin up almost
@@ -342,9 +356,12 @@ def implausibly_small_inertia(robot: Robot, ctx: RuleContext) -> Iterator[Findin
     ```
     """
     density = ctx.options_as(TinyInertiaOptions).max_density
+    parents = parent_joint_of(robot)
     for link in robot.links:
         inertial = link.inertial
         if inertial is None or inertial.inertia is None or not has_mass(link):
+            continue
+        if _small_fixed_part(link, parents):
             continue
         moments = principal_moments(inertial.inertia.matrix())
         if moments[0] <= 0:

@@ -10,6 +10,7 @@ registering them costs nothing.
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -160,6 +161,18 @@ def _certain_violation(ctx: RuleContext, link: Link) -> tuple[list[Axis], Bounds
     return (axes, bounds) if axes else None
 
 
+#: A typed-in diag(I, I, I) whose tensor is this many times larger than the geometry allows
+#: (the largest (sigma / bound)^2 over the impossible axes) is certain, not a deliberate
+#: inflation: I204 reports it by default; below it, it is I206's (opt-in) gray band.
+CERTAIN_FACTOR = 10.0
+
+
+def excess_factor(axes: list[Axis]) -> float:
+    """How many times too large the declared tensor is along its worst axis: the declared
+    spread's square over the largest the geometry allows ((sigma / bound)^2)."""
+    return max(((sigma / bound) ** 2 if bound > 0 else math.inf) for _axis, sigma, bound in axes)
+
+
 def is_isotropic(link: Link) -> bool:
     """Whether the declared tensor is diag(I, I, I): a value typed in, not computed (a
     placeholder, or a tensor inflated on purpose to steady a simulation)."""
@@ -180,7 +193,9 @@ def inertia_impossible_for_geometry(robot: Robot, ctx: RuleContext) -> Iterator[
     The declared tensor and mass give the spread of the mass along each link axis,
     sigma^2 = (trace(I) / 2 - I_aa) / m; a mass confined to an interval of width w has a
     spread of at most w / 2. The message names the axis, the declared spread and that bound.
-    A tensor that implies a negative spread (negative density) is I104's.
+    A tensor that implies a negative spread (negative density) is I104's. A typed-in
+    diag(I, I, I) is reported here only when it is 10 times or more too large (certain: a
+    placeholder nobody revisited); less than that it is I206's gray band (opt-in).
 
     Why is this bad?
     It is certain, not a uniform-density guess: whatever the material inside, this tensor
@@ -213,16 +228,22 @@ def inertia_impossible_for_geometry(robot: Robot, ctx: RuleContext) -> Iterator[
         return
     for link in robot.links:
         found = _certain_violation(ctx, link)
-        if found is None or is_isotropic(link):
+        if found is None:
             continue
-        yield _impossible_finding(robot, ctx, link, found, "")
+        if not is_isotropic(link):
+            yield _impossible_finding(robot, ctx, link, found, "")
+        elif excess_factor(found[0]) >= CERTAIN_FACTOR:
+            yield _impossible_finding(robot, ctx, link, found,
+                                      f"typed-in tensor diag(I, I, I), "
+                                      f"{excess_factor(found[0]):.3g} times too large: ")
 
 
 @rule("I206", "placeholder-inertia-impossible", family=FAMILY, severity=Severity.INFO,
       needs=NEEDS, opt_in=True)
 def placeholder_inertia_impossible(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a typed-in tensor diag(I, I, I) that no mass distribution inside the link's
-    geometry could have: I204's test, for the tensors I204 leaves out.
+    geometry could have, but less than 10 times too large: I204's test, for the gray band
+    I204 leaves out (I204 reports a typed-in tensor 10 times or more too large).
 
     Equal moments with no products are a value typed in, not computed: a placeholder, or a
     tensor inflated on purpose because a physics engine steps small links badly (TIAGo's hand
@@ -260,7 +281,7 @@ def placeholder_inertia_impossible(robot: Robot, ctx: RuleContext) -> Iterator[F
         return
     for link in robot.links:
         found = _certain_violation(ctx, link)
-        if found is not None and is_isotropic(link):
+        if found is not None and is_isotropic(link) and excess_factor(found[0]) < CERTAIN_FACTOR:
             yield _impossible_finding(robot, ctx, link, found,
                                       "typed-in tensor diag(I, I, I): ")
 
