@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 from robotdesc.commands.inputs import single_input
 from robotdesc.expansion import expand_file
 from robotdesc.linting.inputs import description_inputs, run_inputs
+from robotdesc.linting.verdict import inertia_verdict, mark_rows
 from robotdesc.output import check_output, write_output
 
 if TYPE_CHECKING:
@@ -45,7 +46,11 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser], *,
                         help="write the suggested blocks as a unified diff against the "
                              "sources to PATCH (the sources are not changed)")
     parser.add_argument("--all", action="store_true",
-                        help="suggest for every measured link, not only those that differ")
+                        help="suggest for every measured link, not only those that differ "
+                             "(links whose lint finding is suppressed too)")
+    parser.add_argument("--baseline", metavar="FILE",
+                        help="a lint baseline: its recorded findings count as suppressed, as "
+                             "in `lint --baseline`")
     parser.set_defaults(handler=run_inertia)
 
 
@@ -70,7 +75,11 @@ def run_inertia(ns: argparse.Namespace) -> int:
         config.meshes, inertia_source=ns.source)
     meshes = MeshContext.for_file(robot, source, settings, tuple(options.package_paths),
                                   tuple(options.package_map))
-    rows = inertia_table(robot, meshes)
+    verdict = inertia_verdict(source, config, args=single.cli_args or None,
+                              expand_options=options, baseline=ns.baseline)
+    rows = mark_rows(inertia_table(robot, meshes), verdict)
+    if (ns.suggest or ns.write) and not ns.all:
+        _say_suppressed(rows)
     suggestions = _suggestions(robot, meshes, rows, everything=ns.all) \
         if ns.suggest or ns.write else []
     if ns.suggest or ns.write:
@@ -103,6 +112,16 @@ def _suggestions(robot: Robot, meshes: MeshAccess, rows: Sequence[InertiaRow],
     from robotdesc.inertia.suggest import select_suggestions
 
     return select_suggestions(robot, meshes, rows, everything=everything)
+
+
+def _say_suppressed(rows: Sequence[InertiaRow]) -> None:
+    """Say how many links get no block because lint's finding on them is suppressed."""
+    meant = [row for row in rows if row.suppressed and row.error is not None and row.error > 0.5]
+    if meant:
+        codes = sorted({code for row in meant for code in row.suppressed})
+        sys.stderr.write(f"robotdesc: {len(meant)} links left as they are: lint's "
+                         f"{', '.join(codes)} findings on them are suppressed (inline comment, "
+                         "config or baseline); --all suggests for them too\n")
 
 
 def _say_stand_ins(rows: Sequence[InertiaRow], suggested: set[str]) -> None:
