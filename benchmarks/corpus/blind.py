@@ -122,23 +122,59 @@ def findings(results: list[dict]) -> list[dict]:
             for d in r["report"]["diagnostics"]]
 
 
+def absent_files(corpus: Path, fetch_root: Path, folder: str, commit: str) -> set[str]:
+    """Absolute paths of the files of `folder` at `commit` whose blobs the fetch snapshot
+    lacks (its largest files, usually meshes): an M101 on one of them is the environment,
+    not the description. Cached in CORPUS/_precision/absent/FOLDER.json."""
+    cached = corpus / "_precision" / "absent" / f"{folder}.json"
+    if cached.is_file():
+        return set(json.loads(cached.read_text()))
+    mirror = fetch_root / folder / "repo"
+    entries = run_corpus.tree_entries(mirror, commit)
+    check = subprocess.run(["git", f"--git-dir={mirror}", "cat-file", "--batch-check"],
+                           input="".join(blob + "\n" for _m, blob, _p in entries).encode(),
+                           capture_output=True, check=True).stdout.decode().splitlines()
+    absent = sorted(str(corpus / folder / path) for (_m, _b, path), line in zip(entries, check)
+                    if line.endswith("missing"))
+    cached.parent.mkdir(parents=True, exist_ok=True)
+    cached.write_text(json.dumps(absent))
+    return set(absent)
+
+
+def environment_finding(finding: dict, absent: set[str]) -> bool:
+    """An M101 whose mesh is in the repository but absent from the fetch snapshot."""
+    return finding["code"] == "M101" and any(path in finding["message"] for path in absent
+                                              if Path(path).name in finding["message"])
+
+
 def count(options: argparse.Namespace) -> None:
     manifest = run_corpus.load_manifest(run_corpus.DEFAULT_MANIFEST)
     cases = part_cases(manifest, load_split(), options.part)
     corpus = options.corpus.resolve()
+    manifest_commits = manifest.commits
+    absent: set[str] = set()
+    for folder in sorted(needed_folders(cases)):
+        absent |= absent_files(corpus, options.fetch_root, folder, manifest_commits[folder])
     tables = {}
     for label in options.label:
         results = load_results(corpus, label, cases)
-        tables[label] = Counter(d["code"] for d in findings(results))
+        every = findings(results)
+        tables[label] = Counter(d["code"] for d in every)
+        environment = sum(1 for d in every if environment_finding(d, absent))
+        tables[label]["M101 (snapshot)"] = environment
+        tables[label]["M101"] -= environment
         exits = Counter(r["exit"] for r in results)
-        print(f"{label}: {len(results)} of {len(cases)} cases linted, "
-              f"{sum(tables[label].values())} findings, exit codes {dict(exits)}")
+        print(f"{label}: {len(results)} of {len(cases)} cases linted, {len(every)} findings "
+              f"({len(every) - environment} without the {environment} M101 on files absent "
+              f"from the fetch snapshots), exit codes {dict(exits)}")
     codes = sorted(set().union(*tables.values()))
     print("| rule | " + " | ".join(options.label) + " |")
     print("|---|" + "---|" * len(options.label))
     for code in codes:
         print(f"| {code} | " + " | ".join(str(tables[lb][code]) for lb in options.label) + " |")
     print("| total | " + " | ".join(str(sum(t.values())) for t in tables.values()) + " |")
+    print("| total without M101 (snapshot) | " + " | ".join(
+        str(sum(t.values()) - t["M101 (snapshot)"]) for t in tables.values()) + " |")
 
 
 def source_line(path: str | None, line: int | None) -> str:

@@ -46,10 +46,14 @@ def _where(link: Link) -> Provenance | None:
     return link.inertial.where if link.inertial and link.inertial.where else link.where
 
 
-@rule("I101", "moving-link-without-inertial", family=FAMILY, severity=Severity.ERROR)
+@rule("I101", "moving-link-without-inertial", family=FAMILY, severity=Severity.ERROR,
+      opt_in=True)
 def moving_link_without_inertial(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a link moved by a joint (not fixed) that has no `<inertial>`, in a description
     meant for dynamics (one in which some moving link declares a mass).
+
+    Opt-in since issue 29: on the blind part 1 of 5 was worth fixing (virtual wheels and
+    finger-tip frames without inertia by design; docs/precision.md).
 
     A purely kinematic description, for a viewer or a planner, declares no masses and is
     not reported.
@@ -316,10 +320,13 @@ class TinyInertiaOptions:
 
 
 @rule("I105", "implausibly-small-inertia", family=FAMILY, severity=Severity.WARNING,
-      options=TinyInertiaOptions)
+      options=TinyInertiaOptions, opt_in=True)
 def implausibly_small_inertia(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds an inertia too small for the link's mass: no solid of that mass, even one made
     entirely of the densest metal, has moments that small.
+
+    Opt-in since issue 29: on the blind part 1 of 5 was worth fixing (marker links of a
+    docking station; docs/precision.md).
 
     The bound: the sum of the principal moments is smallest for a uniform ball, 6/5 m R^2,
     and the ball is smallest at the highest density (osmium, 22 600 kg/m^3). A link under
@@ -392,10 +399,13 @@ class RootInertiaOptions:
 
 
 @rule("I106", "root-link-inertia", family=FAMILY, severity=Severity.INFO,
-      options=RootInertiaOptions)
+      options=RootInertiaOptions, opt_in=True)
 def root_link_inertia(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a root link that carries most of the robot's mass (over half, by default), in a
     description meant for dynamics.
+
+    Opt-in since issue 29 (info): on the blind part 0 of 3 were worth fixing (a mobile
+    base's and standalone grippers' roots; docs/precision.md).
 
     Why is this bad?
     KDL (kdl_parser: robot_state_publisher, MoveIt's KDL solvers, many controllers) cannot

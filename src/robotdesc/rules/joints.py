@@ -231,7 +231,9 @@ def unknown_effort_limit(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
 def non_positive_velocity(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a revolute, continuous or prismatic joint whose `<limit velocity>` is zero or
     negative. A frozen joint (`lower == upper`, both written) is skipped: it is not meant
-    to move (RotorS freezes its sensor joints so that Gazebo keeps the links apart).
+    to move (RotorS freezes its sensor joints so that Gazebo keeps the links apart). So is a
+    joint whose effort is 0 too: the ROS-Industrial convention for limits not given (J110,
+    opt-in, reports it), used on passive joints such as a robot vacuum's wheel drop.
 
     Why is this bad?
     `velocity` is the largest speed (rad/s or m/s) of the joint. With 0, velocity-limited
@@ -263,7 +265,7 @@ def non_positive_velocity(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     for joint in robot.joints:
         limit = joint.limit
         if joint.type in ACTUATED_TYPES and limit is not None and limit.velocity is not None \
-                and limit.velocity <= 0 and not is_frozen(joint):
+                and limit.velocity <= 0 and not is_frozen(joint) and limit.effort != 0:
             yield Finding(f"joint '{joint.name}' velocity limit is {limit.velocity:g} "
                           "(must be positive)", limit.where or joint.where,
                           f"joint:{joint.name}")

@@ -405,10 +405,14 @@ def _health_findings(robot: Robot, ctx: RuleContext, check: HealthCheck) -> Iter
                               ref.where, _element(link, kind, index))
 
 
-@rule("M109", "mesh-not-watertight", family=FAMILY, severity=Severity.WARNING, needs=NEEDS)
+@rule("M109", "mesh-not-watertight", family=FAMILY, severity=Severity.WARNING, needs=NEEDS,
+      opt_in=True)
 def mesh_not_watertight(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a mesh whose volume robotdesc uses that is not closed: it has holes (boundary
     edges) or edges shared by more than two faces.
+
+    Opt-in since issue 29: on the blind part 0 of 5 were worth fixing (holes of a few edges
+    that change no result; docs/precision.md).
 
     The meshes judged are those a result depends on: collision meshes of a description a
     simulator runs (one that declares masses), and visual meshes of a link with a mass whose
@@ -459,9 +463,12 @@ def mesh_not_watertight(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
 
 
 @rule("M110", "mesh-inconsistent-winding", family=FAMILY, severity=Severity.WARNING,
-      needs=NEEDS)
+      needs=NEEDS, opt_in=True)
 def mesh_inconsistent_winding(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a collision mesh whose neighbouring faces disagree on their orientation.
+
+    Opt-in since issue 29: on the blind part 0 of 5 were worth fixing (industrial arms'
+    collision meshes, used by planners that ignore the winding; docs/precision.md).
 
     Why is this bad?
     Normals flip from face to face: engines that read face normals get contacts pushing
@@ -566,12 +573,15 @@ def mesh_degenerate_faces(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
 
 
 @rule("M113", "collision-uses-visual-mesh", family=FAMILY, severity=Severity.WARNING,
-      needs=NEEDS)
+      needs=NEEDS, opt_in=True)
 def collision_uses_visual_mesh(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a collision geometry that is the link's visual mesh file itself, when that
     mesh has more triangles than the collision budget. A small part on a fixed joint (a mesh
     under 20 cm across: a camera, a sensor housing) is not reported: Gazebo lumps it into
     its parent and its contacts cost little.
+
+    Opt-in since issue 29: on the blind part 2 of 5 were worth fixing (meshes just over the
+    budget; docs/precision.md).
 
     Why is this bad?
     Visual meshes are detailed for looks; as collision geometry they make every contact
@@ -618,12 +628,15 @@ def collision_uses_visual_mesh(robot: Robot, ctx: RuleContext) -> Iterator[Findi
 
 
 @rule("M114", "collision-mesh-over-budget", family=FAMILY, severity=Severity.WARNING,
-      needs=NEEDS)
+      needs=NEEDS, opt_in=True)
 def collision_mesh_over_budget(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a collision mesh with more triangles than the budget
     (`[tool.robotdesc.meshes] collision-triangle-budget`, 10 000 by default) that is not
     the link's visual mesh (that case is M113's). Small parts on fixed joints are left out,
     as in M113.
+
+    Opt-in since issue 29: on the blind part 2 of 5 were worth fixing (meshes just over the
+    budget; docs/precision.md).
 
     Why is this bad?
     Collision checking costs grow with the triangle count; a physics engine steps slower
