@@ -182,13 +182,23 @@ def test_m111_needs_a_volume_relative_to_the_mesh(tmp_path: Path) -> None:
     assert robotdesc.lint(str(path), select=["M111"]).diagnostics == ()
 
 
-def test_m101_checks_file_uris_and_absolute_paths(tmp_path: Path) -> None:
-    there = _write_mesh(trimesh.creation.box(extents=(0.1, 0.1, 0.1)), tmp_path / "box.stl")
-    missing = tmp_path / "zed_msgs" / "meshes" / "zedm.stl"  # zed-ros2-wrapper's reference
-    path = _mesh_robot(tmp_path, f"file://{missing}", fixed=False,
-                       visual=str(tmp_path / there))
-    found = [d for d in robotdesc.lint(str(path)).diagnostics if d.code == "M101"]
-    assert len(found) == 1 and str(missing) in found[0].message
+def test_m101_checks_file_uris_made_by_find(tmp_path: Path) -> None:
+    # zed-ros2-wrapper: `file://$(find zed_msgs)/meshes/${model}.stl`, a folder zed_msgs lacks
+    (tmp_path / "zed_msgs").mkdir()
+    (tmp_path / "zed_msgs" / "package.xml").write_text(
+        "<package format='3'><name>zed_msgs</name></package>")
+    urdf = _mesh_robot(tmp_path, "file://$(find zed_msgs)/meshes/zedm.stl", fixed=False)
+    xacro = tmp_path / "zed.urdf.xacro"
+    xacro.write_text(urdf.read_text().replace(
+        '<robot name="r">', '<robot name="r" xmlns:xacro="http://ros.org/wiki/xacro">'))
+    found = robotdesc.lint(str(xacro), package_paths=[str(tmp_path)]).diagnostics
+    missing = [d for d in found if d.code == "M101"]
+    assert len(missing) == 1 and "zed_msgs/meshes/zedm.stl" in missing[0].message
+    assert not [d for d in found if d.code.startswith("P1")]  # the source is portable
+    # written out in the source: P102's (not portable), not reported twice
+    written = _mesh_robot(tmp_path, "file:///root/ws/install/arm/meshes/arm.stl", fixed=False)
+    codes = [d.code for d in robotdesc.lint(str(written)).diagnostics]
+    assert "P102" in codes and "M101" not in codes
 
 
 def test_certain_placeholder_tensor_is_on_by_default_gray_band_opt_in(tmp_path: Path) -> None:

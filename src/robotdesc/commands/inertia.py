@@ -16,7 +16,6 @@ from typing import TYPE_CHECKING
 from robotdesc.commands.inputs import single_input
 from robotdesc.expansion import expand_file
 from robotdesc.linting.inputs import description_inputs, run_inputs
-from robotdesc.linting.verdict import inertia_verdict, mark_rows
 from robotdesc.output import check_output, write_output
 
 if TYPE_CHECKING:
@@ -57,6 +56,7 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser], *,
 def run_inertia(ns: argparse.Namespace) -> int:
     """The handler: expand, parse, measure, print; exit 0 (2 on unreadable input)."""
     from robotdesc.inertia.table import inertia_table, render_table
+    from robotdesc.linting.verdict import inertia_verdict, mark_rows  # lint: lxml, rules
     from robotdesc.mesh.context import MeshContext
     from robotdesc.model.parse import parse_urdf
 

@@ -20,6 +20,7 @@ from robotdesc.mesh.records import MassMethod, MeshSummary
 from robotdesc.mesh.resolve import local_path
 from robotdesc.model.elements import Joint, Link, MeshRef, Robot
 from robotdesc.model.tree import parent_joint_of
+from robotdesc.rules.paths import made_by_find
 from robotdesc.rules.registry import RuleContext, rule
 
 if TYPE_CHECKING:
@@ -93,8 +94,10 @@ def _mesh_errors(ctx: RuleContext, kinds: set[str] | None, exclude: frozenset[st
 @rule("M101", "mesh-file-missing", family=FAMILY, severity=Severity.ERROR, needs=NEEDS)
 def mesh_file_missing(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a `<mesh>` whose file does not exist (or whose `package://` names no file).
-    A `file://` URI or an absolute path is checked too, even when the config does not allow
-    such paths (P101/P102 say they are not portable; this rule says the file is not there).
+    A `file://` URI or an absolute path that the expansion made with `$(find pkg)` (the
+    source is portable, so P101/P102 say nothing) is checked too, even when the config does
+    not allow such paths: zed-ros2-wrapper's `file://$(find zed_msgs)/meshes/...` names
+    meshes its package does not hold. One written out in the source is P101's or P102's.
 
     Why is this bad?
     Viewers show nothing, simulators refuse the model or drop the collision, and nothing
@@ -120,7 +123,7 @@ def mesh_file_missing(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
         if problem is None or problem.kind.value != "absolute-not-allowed":
             continue
         path = local_path(ref.filename)
-        if path is not None and not os.path.exists(path):
+        if path is not None and made_by_find(ref.filename, ctx) and not os.path.exists(path):
             yield Finding(f"mesh file '{path}' ({ref.filename}) does not exist", ref.where,
                           _element(link, kind, index))
 
@@ -419,9 +422,9 @@ def mesh_not_watertight(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     inertia is judged from them (the configured `inertia-source` is "visual", or the link
     has no collision geometry); a visual mesh of a link without `<inertial>` is never
     reported, nor a small part on a fixed joint (a mesh under 20 cm across, which Gazebo
-    lumps into its parent). M110 and M111 judge the same meshes. Vertices on the rims of holes closer than a millionth of the mesh's size are
-    merged first: exporters' rounding leaves such cracks, and no consumer sees them. A mesh
-    with no hole whose only defect is edges shared by more than two faces, and whose volume
+    lumps into its parent). M110 and M111 judge the same meshes. Vertices on the rims of
+    holes closer than a millionth of the mesh's size are merged first: exporters' rounding
+    leaves such cracks, and no consumer sees them. A mesh with no hole whose only defect is edges shared by more than two faces, and whose volume
     is still integrated exactly, is not reported (Unitree G1's exports have a few).
 
     The message says how its mass properties were obtained instead (holes capped, or the
