@@ -142,6 +142,7 @@ def absent_files(corpus: Path, fetch_root: Path, folder: str, commit: str) -> se
     return set(absent)
 
 
+FILE_MISSING_RE = re.compile(r"^mesh file '([^']*)' \(")
 MISSING_RE = re.compile(r"^'package://[^']*' not found \((/[^)]*)\)")
 
 
@@ -152,6 +153,9 @@ def environment_finding(finding: dict, absent: set[str], corpus: Path) -> bool:
     are judged: where they point is what the description says."""
     if finding["code"] != "M101":
         return False
+    written = FILE_MISSING_RE.match(finding["message"])
+    if written is not None:  # file://$(find pkg)/...: only a blob the snapshot lacks
+        return written.group(1) in absent
     match = MISSING_RE.match(finding["message"])
     if match is None:
         return False

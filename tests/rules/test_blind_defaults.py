@@ -25,7 +25,7 @@ ENGINEER = REPO / "robots" / "engineer_description"
 #: Judged always true on the blind part: on by default.
 ALWAYS_TRUE = ("G101", "I103", "I104", "I204", "S203", "M101", "M103", "M116", "S110")
 #: Under 90% worth fixing on the blind part, or named noise by issue 29: opt-in.
-OPT_IN = ("I101", "I105", "I106", "I202", "J110", "K102", "K203", "M109", "M110", "M112",
+OPT_IN = ("I101", "I105", "I106", "I201", "I202", "J110", "K102", "K203", "M109", "M110", "M112",
           "M113", "M114", "S202")
 
 
