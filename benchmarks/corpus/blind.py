@@ -205,7 +205,7 @@ def source_line(path: str | None, line: int | None) -> str:
 
 def sheet(options: argparse.Namespace) -> None:
     """Per rule, up to --per-rule findings drawn with the seed (all listed in a stable order
-    first, then `random.Random(seed).sample`), each with its file:line and the line's text,
+    first, then `random.Random(f"{seed}:{code}").sample`), each with its file:line and the line's text,
     and a blank verdict to fill in: true / noise / false / wrong location. M101 findings on
     meshes the corpus cannot hold (`environment_finding`) are not drawn."""
     manifest = run_corpus.load_manifest(run_corpus.DEFAULT_MANIFEST)
@@ -220,11 +220,11 @@ def sheet(options: argparse.Namespace) -> None:
     for finding in sorted(every, key=lambda d: (d["case"], d["file"] or "", d["line"] or 0,
                                                  d["message"])):
         by_code.setdefault(finding["code"], []).append(finding)
-    rng = random.Random(options.seed)
     print(f"# judging sheet: part {options.part}, label {options.label}, seed {options.seed}, "
           f"up to {options.per_rule} per rule; verdict: true / noise / false / wrong-location")
     for code in sorted(by_code):
         pool = by_code[code]
+        rng = random.Random(f"{options.seed}:{code}")  # per rule: draws do not shift
         drawn = pool if len(pool) <= options.per_rule else rng.sample(pool, options.per_rule)
         print(f"\n## {code} ({pool[0]['severity']}): {len(drawn)} of {len(pool)}")
         for d in drawn:
