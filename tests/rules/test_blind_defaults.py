@@ -223,6 +223,34 @@ def test_certain_placeholder_tensor_is_on_by_default_gray_band_opt_in(tmp_path: 
     assert [d.code for d in robotdesc.lint(str(gray), select=["I206"]).diagnostics] == ["I206"]
 
 
+HEY5_FINGER = """<?xml version="1.0"?>
+<robot name="hand">
+  <link name="hand_base"><inertial><mass value="0.5"/>
+    <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial></link>
+  <link name="hand_index_flex_1_link">
+    <inertial>
+      <mass value="0.009"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/> {comment}
+    </inertial>
+    <collision><geometry><box size="0.02 0.015 0.03"/></geometry></collision>
+  </link>
+  <joint name="j" type="revolute"><parent link="hand_base"/><child link="hand_index_flex_1_link"/>
+    <axis xyz="0 1 0"/><limit lower="0" upper="1" effort="1" velocity="1"/></joint>
+</robot>
+"""
+
+
+def test_a_tensor_said_to_steady_the_simulation_is_the_gray_band(tmp_path: Path) -> None:
+    # pal_hey5_description/urdf/fingers.urdf.xacro: 1,130 times too large, on purpose
+    meant = tmp_path / "hey5.urdf"
+    meant.write_text(HEY5_FINGER.format(comment="<!-- To stabilize simulation -->"))
+    assert "I204" not in default_codes(meant)
+    assert [d.code for d in robotdesc.lint(str(meant), select=["I206"]).diagnostics] == ["I206"]
+    bare = tmp_path / "bare.urdf"
+    bare.write_text(HEY5_FINGER.format(comment=""))
+    assert "I204" in default_codes(bare)
+
+
 @pytest.mark.slow
 def test_engineer_planted_placeholder_head_is_found_by_default(tmp_path: Path) -> None:
     copy = tmp_path / "engineer_description"

@@ -15,13 +15,15 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from lxml import etree
+
 from robotdesc.diagnostics import Finding, Severity
 from robotdesc.inertia.links import has_mass, link_element, mass_of
 from robotdesc.inertia.mesh_access import MeshAccess
 from robotdesc.mesh.context import LinkGeometry
 from robotdesc.mesh.properties import MassProperties, Vec3
 from robotdesc.model.elements import Inertial, Link, Robot
-from robotdesc.rules.registry import RuleContext, rule
+from robotdesc.rules.registry import RuleContext, SourceDocument, rule
 from robotdesc.source import Provenance
 
 if TYPE_CHECKING:
@@ -173,6 +175,34 @@ def excess_factor(axes: list[Axis]) -> float:
     return max(((sigma / bound) ** 2 if bound > 0 else math.inf) for _axis, sigma, bound in axes)
 
 
+#: Words of a comment next to a typed-in tensor that say it is inflated on purpose (PAL's
+#: hey5 hand: `<inertia .../> <!-- To stabilize simulation -->`).
+ON_PURPOSE_WORDS = ("stabil", "on purpose", "deliberate", "intentional")
+
+
+def explained_tensors(document: SourceDocument | None) -> frozenset[str]:
+    """Links whose `<inertia>` has a comment right before or after it (in the expanded
+    document) saying the value is meant: a tensor inflated to steady a simulation, which
+    I204 leaves to I206's gray band however far it is off."""
+    if document is None or b"<!--" not in document.xml:
+        return frozenset()
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
+                             remove_comments=False, remove_pis=True)
+    try:
+        root = etree.fromstring(document.xml, parser)
+    except (etree.XMLSyntaxError, ValueError):
+        return frozenset()
+    found = set()
+    for inertia in root.iterfind("link/inertial/inertia"):
+        near = (inertia.getprevious(), inertia.getnext())
+        said = " ".join(str(c.text or "") for c in near if isinstance(c, etree._Comment))
+        if any(word in said.lower() for word in ON_PURPOSE_WORDS):
+            name = inertia.getparent().getparent().get("name")
+            if name is not None:
+                found.add(name)
+    return frozenset(found)
+
+
 def is_isotropic(link: Link) -> bool:
     """Whether the declared tensor is diag(I, I, I): a value typed in, not computed (a
     placeholder, or a tensor inflated on purpose to steady a simulation)."""
@@ -185,7 +215,7 @@ def is_isotropic(link: Link) -> bool:
 
 
 @rule("I204", "inertia-impossible-for-geometry", family=FAMILY, severity=Severity.WARNING,
-      needs=NEEDS)
+      needs=(*NEEDS, "document"))
 def inertia_impossible_for_geometry(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a declared inertia tensor that no mass distribution inside the link's geometry
     (visual and collision together, with their scales) could have.
@@ -195,7 +225,8 @@ def inertia_impossible_for_geometry(robot: Robot, ctx: RuleContext) -> Iterator[
     spread of at most w / 2. The message names the axis, the declared spread and that bound.
     A tensor that implies a negative spread (negative density) is I104's. A typed-in
     diag(I, I, I) is reported here only when it is 10 times or more too large (certain: a
-    placeholder nobody revisited); less than that it is I206's gray band (opt-in).
+    placeholder nobody revisited) and no comment next to it says it is meant ("To stabilize
+    simulation"); the others are I206's gray band (opt-in).
 
     Why is this bad?
     It is certain, not a uniform-density guess: whatever the material inside, this tensor
@@ -226,20 +257,21 @@ def inertia_impossible_for_geometry(robot: Robot, ctx: RuleContext) -> Iterator[
     """
     if ctx.meshes is None:
         return
+    explained = explained_tensors(ctx.document)
     for link in robot.links:
         found = _certain_violation(ctx, link)
         if found is None:
             continue
         if not is_isotropic(link):
             yield _impossible_finding(robot, ctx, link, found, "")
-        elif excess_factor(found[0]) >= CERTAIN_FACTOR:
+        elif excess_factor(found[0]) >= CERTAIN_FACTOR and link.name not in explained:
             yield _impossible_finding(robot, ctx, link, found,
                                       f"typed-in tensor diag(I, I, I), "
                                       f"{excess_factor(found[0]):.3g} times too large: ")
 
 
 @rule("I206", "placeholder-inertia-impossible", family=FAMILY, severity=Severity.INFO,
-      needs=NEEDS, opt_in=True)
+      needs=(*NEEDS, "document"), opt_in=True)
 def placeholder_inertia_impossible(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a typed-in tensor diag(I, I, I) that no mass distribution inside the link's
     geometry could have, but less than 10 times too large: I204's test, for the gray band
@@ -279,9 +311,11 @@ def placeholder_inertia_impossible(robot: Robot, ctx: RuleContext) -> Iterator[F
     """
     if ctx.meshes is None:
         return
+    explained = explained_tensors(ctx.document)
     for link in robot.links:
         found = _certain_violation(ctx, link)
-        if found is not None and is_isotropic(link) and excess_factor(found[0]) < CERTAIN_FACTOR:
+        if found is not None and is_isotropic(link) and (
+                excess_factor(found[0]) < CERTAIN_FACTOR or link.name in explained):
             yield _impossible_finding(robot, ctx, link, found,
                                       "typed-in tensor diag(I, I, I): ")
 
