@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import trimesh
+from mesh.builders import box_triangles, write_collada
 
 import robotdesc
 from robotdesc.diagnostics import Severity
@@ -249,6 +250,21 @@ def test_a_tensor_said_to_steady_the_simulation_is_the_gray_band(tmp_path: Path)
     bare = tmp_path / "bare.urdf"
     bare.write_text(HEY5_FINGER.format(comment=""))
     assert "I204" in default_codes(bare)
+
+
+def test_m116_leaves_out_the_exporters_cameras_and_lights(tmp_path: Path) -> None:
+    # fetch_description's DAE files: `Camera #Camera-camera not found in library`
+    dae = write_collada(tmp_path / "head_pan_link.dae", box_triangles((0.1, 0.1, 0.1)))
+    dae.write_text(dae.read_text().replace(
+        "</visual_scene>", '<node id="cam"><instance_camera url="#Camera-camera"/></node>'
+                           '<node id="lamp"><instance_light url="#Lamp-light"/></node>'
+                           "</visual_scene>"))
+    path = _mesh_robot(tmp_path, dae.name, fixed=False, visual=dae.name)
+    assert robotdesc.lint(str(path), select=["M116"]).diagnostics == ()
+    broken = write_collada(tmp_path / "foot.dae", box_triangles((0.1, 0.1, 0.1)),
+                           material="#nowhere-material")
+    path = _mesh_robot(tmp_path, broken.name, fixed=False, visual=broken.name)
+    assert [d.code for d in robotdesc.lint(str(path), select=["M116"]).diagnostics] == ["M116"]
 
 
 @pytest.mark.slow

@@ -295,6 +295,9 @@ def mesh_broken_material_reference(robot: Robot, ctx: RuleContext) -> Iterator[F
     images do not resolve: an `<instance_material>` naming no `<material>`, an effect
     sampling a surface that is not defined, an `<image>` whose file does not exist.
 
+    References to the exporter's cameras and lights are not reported: no URDF consumer
+    draws them (Fetch's meshes name a camera and a lamp their file lacks).
+
     Each file is reported once per robot, at its first `<mesh>`.
 
     Why is this bad?
@@ -322,15 +325,24 @@ def mesh_broken_material_reference(robot: Robot, ctx: RuleContext) -> Iterator[F
     for link, kind, index, ref, found in _lookups(ctx):
         summary = found.summary
         path = found.resolution.path
-        if summary is None or not summary.broken_references or path is None or path in seen:
+        if summary is None or path is None or path in seen:
+            continue
+        problems = tuple(p for p in summary.broken_references if not _scene_only(p))
+        if not problems:
             continue
         seen.add(path)
-        problems = summary.broken_references
         listed = "; ".join(problems[:3]) + (f"; and {len(problems) - 3} more"
                                             if len(problems) > 3 else "")
         yield Finding(f"'{ref.filename}' has broken material or texture references "
                       f"({listed}); its geometry ({summary.health.triangles} triangles) is "
                       "read without them", ref.where, _element(link, kind, index))
+
+
+def _scene_only(problem: str) -> bool:
+    """A broken reference to a camera or a light of the exporter's scene (Fetch's DAE files:
+    `Camera #Camera-camera not found in library`): no consumer of a URDF mesh draws those,
+    so nothing is lost."""
+    return problem.startswith(("Camera ", "Light "))
 
 
 @rule("M108", "mesh-in-millimetres", family=FAMILY, severity=Severity.WARNING, needs=NEEDS)
