@@ -219,6 +219,19 @@ def test_rules_and_rule(project: Path) -> None:
     assert proc.returncode == 0
     assert proc.stdout.startswith("RD001 unused-suppression\n")
     assert "Default severity:" in proc.stdout
+    assert "Default: on" in proc.stdout
+
+
+def test_rules_mark_each_rule_default_on_or_off(project: Path) -> None:
+    text = run("rules").stdout.splitlines()
+    assert text[0].split()[:5] == ["CODE", "NAME", "FAMILY", "SEVERITY", "DEFAULT"]
+    assert any(line.split()[:1] == ["K102"] and line.split()[4] == "off" for line in text)
+    assert any(line.split()[:1] == ["I204"] and line.split()[4] == "on" for line in text)
+    proc = run("rules", "--format", "json")
+    assert proc.returncode == 0
+    states = {entry["code"]: entry["default"] for entry in json.loads(proc.stdout)}
+    assert states["I204"] == "on" and states["I206"] == "off" and states["J110"] == "off"
+    assert "Default: off" in run("rule", "K203").stdout
 
 
 def test_expand_plain_urdf_to_a_file_and_never_over_the_input(project: Path) -> None:

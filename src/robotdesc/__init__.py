@@ -160,14 +160,18 @@ def mesh_inertia(path: str, args: Mapping[str, str] | None = None, *,
         package_paths: folders searched for ROS packages first.
 
     Returns:
-        An `InertiaTable` (renders as a table in Jupyter; `.rows`, `.to_dict()`).
+        An `InertiaTable` (renders as a table in Jupyter; `.rows`, `.to_dict()`). A row whose
+        link's inertia finding lint suppresses (inline comment, per-file ignore) has
+        `suppressed` set to the codes, as `robotdesc inertia` shows it.
 
     Raises:
         UsageError: `source` is neither "collision" nor "visual".
     """
     from robotdesc.config import discover_config
     from robotdesc.errors import UsageError
+    from robotdesc.expansion import ExpandOptions
     from robotdesc.inertia.table import InertiaTable, inertia_table
+    from robotdesc.linting.verdict import inertia_verdict, mark_rows
     from robotdesc.mesh.context import MeshContext
     from robotdesc.model.parse import parse_urdf
 
@@ -181,8 +185,10 @@ def mesh_inertia(path: str, args: Mapping[str, str] | None = None, *,
         config.meshes, inertia_source=source)
     meshes = MeshContext.for_file(robot, expanded.source, settings, tuple(package_paths),
                                   tuple(config.packages))
+    verdict = inertia_verdict(path, config, args=args,
+                              expand_options=ExpandOptions(package_paths=tuple(package_paths)))
     return InertiaTable(expanded.source, settings.inertia_source,
-                        tuple(inertia_table(robot, meshes)))
+                        tuple(mark_rows(inertia_table(robot, meshes), verdict)))
 
 
 def lint(path: str, args: Mapping[str, str] | None = None, *,

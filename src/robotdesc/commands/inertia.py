@@ -18,6 +18,7 @@ from robotdesc.expansion import expand_file
 from robotdesc.inertia.suggest import denser_than_any_material, select_suggestions
 from robotdesc.inertia.table import inertia_table, render_table
 from robotdesc.linting.inputs import description_inputs, run_inputs
+from robotdesc.linting.verdict import inertia_verdict, mark_rows
 from robotdesc.mesh.context import MeshContext
 from robotdesc.output import check_output, write_output
 
@@ -48,7 +49,11 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser], *,
                         help="write the suggested blocks as a unified diff against the "
                              "sources to PATCH (the sources are not changed)")
     parser.add_argument("--all", action="store_true",
-                        help="suggest for every measured link, not only those that differ")
+                        help="suggest for every measured link, not only those that differ "
+                             "(links whose lint finding is suppressed too)")
+    parser.add_argument("--baseline", metavar="FILE",
+                        help="a lint baseline: its recorded findings count as suppressed, as "
+                             "in `lint --baseline`")
     parser.set_defaults(handler=run_inertia)
 
 
@@ -72,7 +77,11 @@ def run_inertia(ns: argparse.Namespace) -> int:
     meshes = MeshContext.for_file(robot, source, settings, tuple(options.package_paths),
                                   tuple(options.package_map), use_cache=options.use_cache,
                                   cache_dir=options.cache_dir)
-    rows = inertia_table(robot, meshes)
+    verdict = inertia_verdict(source, config, args=single.cli_args or None,
+                              expand_options=options, baseline=ns.baseline)
+    rows = mark_rows(inertia_table(robot, meshes), verdict)
+    if (ns.suggest or ns.write) and not ns.all:
+        _say_suppressed(rows)
     suggestions = _suggestions(robot, meshes, rows, everything=ns.all) \
         if ns.suggest or ns.write else []
     if ns.suggest or ns.write:
@@ -119,6 +128,16 @@ def _by_reason(skipped: Sequence[tuple[str, str]]) -> dict[str, list[str]]:
     for link, reason in skipped:
         found.setdefault(reason, []).append(link)
     return found
+
+
+def _say_suppressed(rows: Sequence[InertiaRow]) -> None:
+    """Say how many links get no block because lint's finding on them is suppressed."""
+    meant = [row for row in rows if row.suppressed and row.error is not None and row.error > 0.5]
+    if meant:
+        codes = sorted({code for row in meant for code in row.suppressed})
+        sys.stderr.write(f"robotdesc: {len(meant)} links left as they are: lint's "
+                         f"{', '.join(codes)} findings on them are suppressed (inline comment, "
+                         "config or baseline); --all suggests for them too\n")
 
 
 def _say_stand_ins(rows: Sequence[InertiaRow], suggested: set[str]) -> None:

@@ -209,13 +209,15 @@ def select_suggestions(robot: Robot, meshes: MeshAccess, rows: Sequence[InertiaR
     `everything`. A link without `<inertial>` that is a root (the massless root the
     consumers expect, KDL warns about a root's inertia) or hangs on a fixed joint (a frame,
     lumped into its parent) is left as it is. Meshes diagnosed as millimetres are scaled
-    first (see `suggest_for_link`).
+    first (see `suggest_for_link`). A row marked `suppressed` (lint's finding on the link is
+    suppressed: `robotdesc.linting.verdict`) is left out unless `everything`.
 
     Args:
         rows: the inertia table (`robotdesc.inertia.table.inertia_table`), computed when None.
     """
     table = rows if rows is not None else inertia_table(robot, meshes, tolerance)
     errors = {row.link: row.error for row in table}
+    meant = {row.link for row in table if row.suppressed}
     parents = parent_joint_of(robot)
     found: list[Suggestion] = []
     for link in robot.links:
@@ -228,6 +230,8 @@ def select_suggestions(robot: Robot, meshes: MeshAccess, rows: Sequence[InertiaR
         if not everything and link.inertial is not None and error is not None \
                 and error <= tolerance:
             continue
+        if not everything and link.name in meant:
+            continue  # lint's finding on it is suppressed: the tensor is meant
         suggestion = suggest_for_link(robot, meshes, link)
         if suggestion is not None:
             found.append(suggestion)

@@ -37,6 +37,9 @@ class InertiaRow:
             compared.
         cause: the likely cause of a difference, when one is recognised.
         notes: how the geometry was measured, and what could not be.
+        suppressed: the codes of lint's inertia findings on this link that a suppression
+            (inline comment, per-file ignore, baseline) hides; empty when none
+            (`robotdesc.linting.verdict`): the tensor is meant as it is.
     """
 
     link: str
@@ -51,6 +54,7 @@ class InertiaRow:
     error: float | None
     cause: str | None
     notes: tuple[str, ...] = ()
+    suppressed: tuple[str, ...] = ()
 
     def to_json(self) -> dict[str, JsonValue]:
         """The row as JSON, one key per attribute (tuples as lists)."""
@@ -59,7 +63,8 @@ class InertiaRow:
                 "declared_com": _list(self.declared_com), "derived_com": _list(self.derived_com),
                 "declared_moments": _list(self.declared_moments),
                 "derived_moments": _list(self.derived_moments), "error": self.error,
-                "cause": self.cause, "notes": list(self.notes)}
+                "cause": self.cause, "notes": list(self.notes),
+                "suppressed": list(self.suppressed)}
 
 
 @dataclass(frozen=True)
@@ -127,8 +132,9 @@ def render_table(rows: list[InertiaRow]) -> str:
     header = ("LINK", "SOURCE", "MASS kg", "VOLUME m^3", "DENSITY", "ERROR")
     cells = [header]
     for row in rows:
+        error = "-" if row.error is None else f"{100 * row.error:.3g}%"
         cells.append((row.link, row.source or "-", _num(row.declared_mass), _num(row.volume),
-                      _num(row.density), "-" if row.error is None else f"{100 * row.error:.3g}%"))
+                      _num(row.density), error + (" suppressed" if row.suppressed else "")))
     widths = [max(len(line[i]) for line in cells) for i in range(len(header))]
     out = ["  ".join(c.ljust(w) for c, w in zip(header, widths)).rstrip()]
     for row, line in zip(rows, cells[1:]):
@@ -137,7 +143,9 @@ def render_table(rows: list[InertiaRow]) -> str:
                    f"geometry {_vec(row.derived_com)}".rstrip())
         out.append(f"    moments kg m^2 declared {_vec(row.declared_moments):<29} "
                    f"geometry {_vec(row.derived_moments)}".rstrip())
-        for note in ((f"likely cause: {row.cause}",) if row.cause else ()) + row.notes:
+        said = ((f"suppressed in lint ({', '.join(row.suppressed)}): meant as it is",)
+                if row.suppressed else ())
+        for note in said + ((f"likely cause: {row.cause}",) if row.cause else ()) + row.notes:
             out.extend(textwrap.wrap(note, 100, initial_indent="    ",
                                      subsequent_indent="      ", break_on_hyphens=False))
     return "\n".join(out) + "\n"

@@ -125,12 +125,15 @@ def apply_baseline(results: Sequence[LintResult], baseline: Counter[Key],
     matched = 0
     for result in results:
         kept: list[Diagnostic] = []
+        hidden: list[Diagnostic] = []
         for diagnostic in result.diagnostics:
             key = finding_key(diagnostic, result, base)
             if remaining[key] > 0:
                 remaining[key] -= 1
                 matched += 1
+                hidden.append(diagnostic)
             else:
                 kept.append(diagnostic)
-        kept_results.append(dataclasses.replace(result, diagnostics=tuple(kept)))
+        kept_results.append(dataclasses.replace(result, diagnostics=tuple(kept),
+                                                hidden=result.hidden + tuple(hidden)))
     return BaselineOutcome(tuple(kept_results), matched, sum(remaining.values()))

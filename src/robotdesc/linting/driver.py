@@ -97,7 +97,7 @@ def lint_file(path: str, config: Config | None = None, *,
         severity = config.severity_for(rule.code, rule.severity)
         diagnostics.extend(_diagnostic(rule, severity, f, fallback, target) for f in findings)
 
-    before_ignores = len(diagnostics)
+    ignored = [d for d in diagnostics if _ignored_for_file(d, config)]
     diagnostics = [d for d in diagnostics if not _ignored_for_file(d, config)]
     sources = (expanded.source, *expanded.files_read, *expanded.files)
     suppressions = scan_files(p for p in sources if p and os.path.isfile(p))
@@ -115,8 +115,9 @@ def lint_file(path: str, config: Config | None = None, *,
               len(outcome.suppressed))
     return LintResult(target=target, diagnostics=tuple(sorted(kept, key=Diagnostic.sort_key)),
                       expanded=expanded, robot=robot, suppressed=len(outcome.suppressed),
-                      suppressed_by_config=before_ignores - len(diagnostics),
-                      config_path=config.path, rules_run=tuple(r.code for r in rules))
+                      suppressed_by_config=len(ignored),
+                      config_path=config.path, rules_run=tuple(r.code for r in rules),
+                      hidden=tuple(outcome.suppressed) + tuple(ignored))
 
 
 def _run_cached(rule: Rule, robot: Robot, context: RuleContext, expanded: Expanded,

@@ -33,6 +33,8 @@ class LintResult:
             line), as (name, value) pairs; empty: the file's defaults.
         suppressed_by_config: findings hidden by the config's per-file ignores.
         suppressed_by_baseline: findings hidden by a baseline file.
+        hidden: the findings suppressed (inline comments, per-file ignores, baseline), for the
+            commands that must give lint's verdict (`robotdesc.linting.verdict`).
     """
 
     target: str
@@ -47,6 +49,7 @@ class LintResult:
     args: tuple[tuple[str, str], ...] = ()
     suppressed_by_config: int = 0
     suppressed_by_baseline: int = 0
+    hidden: tuple[Diagnostic, ...] = ()
 
     @property
     def files_read(self) -> frozenset[str]:

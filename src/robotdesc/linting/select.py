@@ -44,10 +44,12 @@ def select_rules(rules: Iterable[Rule], select: Sequence[str] | None,
                  ignore: Sequence[str] = ()) -> list[Rule]:
     """The rules that run, in their given order.
 
-    An opt-in rule (`opt_in` true) runs only when a selector other than "ALL" selects it.
+    An opt-in rule (`opt_in` true) runs only when a selector given in `select` selects it:
+    its code, a prefix, its name, or "ALL" (which selects every rule). With no `select`
+    (None: the defaults) it does not run.
     """
     return [r for r in rules if is_selected(r.code, r.name, select, ignore)
-            and (not r.opt_in or best_match(select or (), r.code, r.name) > 1)]
+            and (not r.opt_in or best_match(select or (), r.code, r.name) > 0)]
 
 
 def unknown_selectors(selectors: Iterable[str], rules: Iterable[Rule]) -> list[str]:

@@ -110,6 +110,16 @@ def resolve_mesh(filename: str, *, base_dir: str, find_package: PackageLookup,
     return _finish(filename, os.path.join(base_dir, text), root=relative_root)
 
 
+def local_path(filename: str) -> str | None:
+    """The path on this machine a `file://` URI or an absolute path names (None for any other
+    reference): what a consumer opens, whether or not the config allows such paths."""
+    text = filename.strip()
+    scheme, sep, rest = text.partition("://")
+    if sep:
+        return "/" + rest.lstrip("/") if scheme == "file" else None
+    return text if text and os.path.isabs(text) else None
+
+
 def _resolve_package(filename: str, rest: str, find_package: PackageLookup) -> MeshResolution:
     warnings: tuple[str, ...] = ()
     if rest.startswith("/"):

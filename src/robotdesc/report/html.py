@@ -136,7 +136,10 @@ def inertia_rows_html(rows: Sequence[Any]) -> str:
         return '<p class="note">No link declares an inertial or has geometry.</p>'
     body = []
     for row in rows:
-        marked = ' class="bad"' if row.error is not None and row.error > 0.5 else ""
+        suppressed = getattr(row, "suppressed", ())
+        marked = (' class="bad"' if row.error is not None and row.error > 0.5
+                  and not suppressed else "")
+        said = f" (suppressed: {', '.join(suppressed)})" if suppressed else ""
         notes = "; ".join(((f"likely cause: {row.cause}",) if row.cause else ()) + row.notes)
         body.append(
             f"<tr{marked}><td>{_e(row.link)}</td>"
@@ -146,7 +149,8 @@ def inertia_rows_html(rows: Sequence[Any]) -> str:
             f"<td class=vec>{_vec(row.derived_com)}</td>"
             f"<td class=vec>{_vec(row.declared_moments)}</td>"
             f"<td class=vec>{_vec(row.derived_moments)}</td>"
-            f"<td class=num>{'-' if row.error is None else f'{100 * row.error:.1f}%'}</td>"
+            f"<td class=num>{'-' if row.error is None else f'{100 * row.error:.1f}%'}"
+            f"{_e(said)}</td>"
             f"<td>{_e(notes)}</td></tr>")
     head = ("link", "geometry", "mass kg", "volume m³", "density kg/m³", "COM declared m",
             "COM geometry m", "moments declared kg·m²", "moments geometry kg·m²", "difference",

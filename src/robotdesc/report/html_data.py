@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from robotdesc.inertia.table import inertia_table
+from robotdesc.linting.verdict import mark_rows, result_verdict
 from robotdesc.mesh.context import MeshContext
 from robotdesc.mesh.settings import MeshSettings
 from robotdesc.view.scene import Scene
@@ -73,7 +74,8 @@ def collect_report(result: Any, *, package_paths: Sequence[str] = (),
                         package_map=tuple(package_map),
                         max_faces=max_faces or DEFAULT_MAX_FACES) if view else None
     settings = mesh_settings or MeshSettings()
-    rows = _inertia_rows(robot, result.target, settings, package_paths, package_map)
+    rows = _inertia_rows(robot, result.target, settings, package_paths, package_map,
+                         result_verdict(result))
     if scene is not None and scene.problems:
         notes.append(f"{len(scene.problems)} geometries could not be shown in the 3D view")
     collision = None
@@ -88,7 +90,9 @@ def collect_report(result: Any, *, package_paths: Sequence[str] = (),
 
 
 def _inertia_rows(robot: Any, target: str, settings: Any, package_paths: Sequence[str],
-                  package_map: Sequence[tuple[str, str]]) -> tuple[Any, ...]:
+                  package_map: Sequence[tuple[str, str]],
+                  verdict: Mapping[str, tuple[str, ...]]) -> tuple[Any, ...]:
+    """The inertia table, each row marked with lint's suppressed findings on its link."""
     meshes = MeshContext.for_file(robot, target, settings, tuple(package_paths),
                                   tuple(package_map))
-    return tuple(inertia_table(robot, meshes))
+    return tuple(mark_rows(inertia_table(robot, meshes), verdict))

@@ -28,11 +28,14 @@ def render_rules_markdown() -> str:
         ("Each rule has a stable code and a kebab-case name that names the problem. A finding "
         "can be suppressed on its element with `<!-- robotdesc: ignore CODE -->` "
         "(see RD001).\n"),
-        "| Code | Name | Family | Default severity |",
-        "|------|------|--------|------------------|",
+        ("Default on: the rule runs without `--select`. Default off (opt-in): it runs when "
+         "`--select` or the config's `select` names it (its code, a prefix, its name, or "
+         "`ALL`); docs/precision.md says why each rule is where it is.\n"),
+        "| Code | Name | Family | Default severity | Default |",
+        "|------|------|--------|------------------|---------|",
     ]
-    parts += [f"| [{r.code}](#{rule_anchor(r)}) | {r.name} | {r.family} | {r.severity} |"
-              for r in rules]
+    parts += [f"| [{r.code}](#{rule_anchor(r)}) | {r.name} | {r.family} | {r.severity} | "
+              f"{'off' if r.opt_in else 'on'} |" for r in rules]
     parts.append("")
     for rule_ in rules:
         parts.append(_render_rule(rule_))
@@ -44,7 +47,8 @@ def rule_anchor(rule_: Rule) -> str:
 
 
 def _render_rule(rule_: Rule) -> str:
-    facts = [f"Family: {rule_.family}", f"Default severity: {rule_.severity}"]
+    facts = [f"Family: {rule_.family}", f"Default severity: {rule_.severity}",
+             "Default: " + ("off (opt-in)" if rule_.opt_in else "on")]
     if rule_.needs:
         facts.append("Needs: " + ", ".join(sorted(rule_.needs)))
     if rule_.code in FIXABLE:

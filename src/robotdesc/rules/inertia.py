@@ -20,7 +20,7 @@ from robotdesc.inertia.links import (
     mass_of,
     root_links,
 )
-from robotdesc.model.elements import Link, Robot
+from robotdesc.model.elements import Joint, Link, Robot
 from robotdesc.model.tree import parent_joint_of
 from robotdesc.rules.registry import RuleContext, rule
 from robotdesc.source import Provenance
@@ -46,10 +46,14 @@ def _where(link: Link) -> Provenance | None:
     return link.inertial.where if link.inertial and link.inertial.where else link.where
 
 
-@rule("I101", "moving-link-without-inertial", family=FAMILY, severity=Severity.ERROR)
+@rule("I101", "moving-link-without-inertial", family=FAMILY, severity=Severity.ERROR,
+      opt_in=True)
 def moving_link_without_inertial(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a link moved by a joint (not fixed) that has no `<inertial>`, in a description
     meant for dynamics (one in which some moving link declares a mass).
+
+    Opt-in since issue 29: on the blind part 1 of 5 was worth fixing (virtual wheels and
+    finger-tip frames without inertia by design; docs/precision.md).
 
     A purely kinematic description, for a viewer or a planner, declares no masses and is
     not reported.
@@ -292,6 +296,18 @@ def inertia_triangle_inequality(robot: Robot, ctx: RuleContext) -> Iterator[Find
                           "largest)", inertial.inertia.where or _where(link), link_element(link))
 
 
+#: A link on a fixed joint lighter than this (kg) is a small fixed part (a 5 g camera or
+#: IMU board): Gazebo and the dynamics libraries lump it into its parent, where its inertia
+#: is lost in the parent's, so I105 does not judge it.
+SMALL_FIXED_MASS = 0.1
+
+
+def _small_fixed_part(link: Link, parents: dict[str, Joint]) -> bool:
+    joint = parents.get(link.name)
+    return (joint is not None and joint.type == "fixed"
+            and mass_of(link) < SMALL_FIXED_MASS)
+
+
 @dataclass(frozen=True)
 class TinyInertiaOptions:
     """Options of I105.
@@ -304,13 +320,18 @@ class TinyInertiaOptions:
 
 
 @rule("I105", "implausibly-small-inertia", family=FAMILY, severity=Severity.WARNING,
-      options=TinyInertiaOptions)
+      options=TinyInertiaOptions, opt_in=True)
 def implausibly_small_inertia(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds an inertia too small for the link's mass: no solid of that mass, even one made
     entirely of the densest metal, has moments that small.
 
+    Opt-in since issue 29: on the blind part 1 of 5 was worth fixing (marker links of a
+    docking station; docs/precision.md).
+
     The bound: the sum of the principal moments is smallest for a uniform ball, 6/5 m R^2,
-    and the ball is smallest at the highest density (osmium, 22 600 kg/m^3).
+    and the ball is smallest at the highest density (osmium, 22 600 kg/m^3). A link under
+    100 g on a fixed joint (a sensor board) is not judged: it is lumped into its parent,
+    whose inertia hides its own.
 
     Why is this bad?
     Placeholder values such as `ixx="1e-6"` on a 1 kg link make the link spin up almost
@@ -342,9 +363,12 @@ def implausibly_small_inertia(robot: Robot, ctx: RuleContext) -> Iterator[Findin
     ```
     """
     density = ctx.options_as(TinyInertiaOptions).max_density
+    parents = parent_joint_of(robot)
     for link in robot.links:
         inertial = link.inertial
         if inertial is None or inertial.inertia is None or not has_mass(link):
+            continue
+        if _small_fixed_part(link, parents):
             continue
         moments = principal_moments(inertial.inertia.matrix())
         if moments[0] <= 0:
@@ -375,10 +399,13 @@ class RootInertiaOptions:
 
 
 @rule("I106", "root-link-inertia", family=FAMILY, severity=Severity.INFO,
-      options=RootInertiaOptions)
+      options=RootInertiaOptions, opt_in=True)
 def root_link_inertia(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a root link that carries most of the robot's mass (over half, by default), in a
     description meant for dynamics.
+
+    Opt-in since issue 29 (info): on the blind part 0 of 3 were worth fixing (a mobile
+    base's and standalone grippers' roots; docs/precision.md).
 
     Why is this bad?
     KDL (kdl_parser: robot_state_publisher, MoveIt's KDL solvers, many controllers) cannot

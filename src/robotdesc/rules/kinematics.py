@@ -74,10 +74,14 @@ def pinocchio_cannot_build(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
                       problem.where or robot.where, problem.element or f"robot:{robot.name}")
 
 
-@rule("K102", "zero-configuration-outside-limits", family=FAMILY, severity=Severity.WARNING)
+@rule("K102", "zero-configuration-outside-limits", family=FAMILY, severity=Severity.WARNING,
+      opt_in=True)
 def zero_configuration_outside_limits(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a joint whose limits exclude 0, the position every joint takes in the zero
     (neutral) configuration; mimic joints are checked at the position their driver's 0 implies.
+
+    Opt-in: on real packages the range is by design (a knee that cannot straighten, Kinova's
+    joint_2, whose Gazebo launch spawns the arm with `-J` at a pose inside the limits).
 
     Why is this bad?
     Pinocchio's `neutral()`, a Gazebo or MuJoCo spawn and ros2_control's default initial state

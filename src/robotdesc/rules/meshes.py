@@ -10,14 +10,18 @@ allows absolute paths.
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Callable, Iterator
 from typing import TYPE_CHECKING
 
 from robotdesc.diagnostics import Finding, Severity
 from robotdesc.inertia.links import is_dynamics_model
 from robotdesc.mesh.records import MassMethod, MeshSummary
+from robotdesc.mesh.resolve import local_path
 from robotdesc.mesh.scale_check import looks_like_millimetres, robot_size
-from robotdesc.model.elements import Link, MeshRef, Robot
+from robotdesc.model.elements import Joint, Link, MeshRef, Robot
+from robotdesc.model.tree import parent_joint_of
+from robotdesc.rules.paths import made_by_find
 from robotdesc.rules.registry import RuleContext, rule
 
 if TYPE_CHECKING:
@@ -32,6 +36,13 @@ FAMILY = "meshes"
 NEEDS = ("meshes",)
 #: A link lighter than this (kg) is a placeholder frame, not a body (M115 skips it).
 DUMMY_MASS = 1e-3
+#: M111 calls a mesh inverted only when |signed volume| is at least this share of its
+#: bounding box's volume.
+INVERTED_VOLUME_FRACTION = 0.01
+#: A mesh no wider than this (m, its bounding box's diagonal) on a link attached by a fixed
+#: joint is a small fixed part (a camera, a sonar, a cover): Gazebo lumps it into its parent
+#: and no result depends on its mesh's hygiene or triangle count.
+SMALL_PART_SIZE = 0.2
 
 
 def _element(link: Link, kind: str, index: int) -> str:
@@ -84,6 +95,10 @@ def _mesh_errors(ctx: RuleContext, kinds: set[str] | None, exclude: frozenset[st
 @rule("M101", "mesh-file-missing", family=FAMILY, severity=Severity.ERROR, needs=NEEDS)
 def mesh_file_missing(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a `<mesh>` whose file does not exist (or whose `package://` names no file).
+    A `file://` URI or an absolute path that the expansion made with `$(find pkg)` (the
+    source is portable, so P101/P102 say nothing) is checked too, even when the config does
+    not allow such paths: zed-ros2-wrapper's `file://$(find zed_msgs)/meshes/...` names
+    meshes its package does not hold. One written out in the source is P101's or P102's.
 
     Why is this bad?
     Viewers show nothing, simulators refuse the model or drop the collision, and nothing
@@ -104,6 +119,14 @@ def mesh_file_missing(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     ```
     """
     yield from _resolve_problems(ctx, {"missing", "empty"})
+    for link, kind, index, ref, found in _lookups(ctx):
+        problem = found.resolution.problem
+        if problem is None or problem.kind.value != "absolute-not-allowed":
+            continue
+        path = local_path(ref.filename)
+        if path is not None and made_by_find(ref.filename, ctx) and not os.path.exists(path):
+            yield Finding(f"mesh file '{path}' ({ref.filename}) does not exist", ref.where,
+                          _element(link, kind, index))
 
 
 @rule("M102", "mesh-name-case-mismatch", family=FAMILY, severity=Severity.ERROR, needs=NEEDS)
@@ -273,6 +296,9 @@ def mesh_broken_material_reference(robot: Robot, ctx: RuleContext) -> Iterator[F
     images do not resolve: an `<instance_material>` naming no `<material>`, an effect
     sampling a surface that is not defined, an `<image>` whose file does not exist.
 
+    References to the exporter's cameras and lights are not reported: no URDF consumer
+    draws them (Fetch's meshes name a camera and a lamp their file lacks).
+
     Each file is reported once per robot, at its first `<mesh>`.
 
     Why is this bad?
@@ -300,15 +326,24 @@ def mesh_broken_material_reference(robot: Robot, ctx: RuleContext) -> Iterator[F
     for link, kind, index, ref, found in _lookups(ctx):
         summary = found.summary
         path = found.resolution.path
-        if summary is None or not summary.broken_references or path is None or path in seen:
+        if summary is None or path is None or path in seen:
+            continue
+        problems = tuple(p for p in summary.broken_references if not _scene_only(p))
+        if not problems:
             continue
         seen.add(path)
-        problems = summary.broken_references
         listed = "; ".join(problems[:3]) + (f"; and {len(problems) - 3} more"
                                             if len(problems) > 3 else "")
         yield Finding(f"'{ref.filename}' has broken material or texture references "
                       f"({listed}); its geometry ({summary.health.triangles} triangles) is "
                       "read without them", ref.where, _element(link, kind, index))
+
+
+def _scene_only(problem: str) -> bool:
+    """A broken reference to a camera or a light of the exporter's scene (Fetch's DAE files:
+    `Camera #Camera-camera not found in library`): no consumer of a URDF mesh draws those,
+    so nothing is lost."""
+    return problem.startswith(("Camera ", "Light "))
 
 
 @rule("M108", "mesh-in-millimetres", family=FAMILY, severity=Severity.WARNING, needs=NEEDS)
@@ -359,8 +394,25 @@ def _diagonal(summary: MeshSummary) -> float:
     return math.sqrt(x * x + y * y + z * z)
 
 
-def _health_findings(ctx: RuleContext, check: HealthCheck) -> Iterator[Finding]:
+def _small_fixed_part(parents: dict[str, Joint], link: Link, summary: MeshSummary | None
+                      ) -> bool:
+    """A small part on a fixed joint (see SMALL_PART_SIZE); a root link never is one."""
+    joint = parents.get(link.name)
+    return (joint is not None and joint.type == "fixed" and summary is not None
+            and _diagonal(summary) <= SMALL_PART_SIZE)
+
+
+def _health_findings(robot: Robot, ctx: RuleContext, check: HealthCheck) -> Iterator[Finding]:
+    """Findings of `check` on the meshes a result depends on: collision meshes of a
+    description a simulator runs (one declaring masses: `is_dynamics_model`), and visual
+    meshes whose volume feeds an inertia (`_volume_used`), small fixed parts left out."""
+    parents = parent_joint_of(robot)
+    dynamics = is_dynamics_model(robot)
     for link, kind, index, ref, found in _lookups(ctx, physical_only=True):
+        if kind == "collision" and not dynamics:
+            continue
+        if _small_fixed_part(parents, link, found.summary):
+            continue
         if found.summary is not None:
             message = check(found.summary)
             if message:
@@ -368,17 +420,23 @@ def _health_findings(ctx: RuleContext, check: HealthCheck) -> Iterator[Finding]:
                               ref.where, _element(link, kind, index))
 
 
-@rule("M109", "mesh-not-watertight", family=FAMILY, severity=Severity.WARNING, needs=NEEDS)
+@rule("M109", "mesh-not-watertight", family=FAMILY, severity=Severity.WARNING, needs=NEEDS,
+      opt_in=True)
 def mesh_not_watertight(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a mesh whose volume robotdesc uses that is not closed: it has holes (boundary
     edges) or edges shared by more than two faces.
 
-    The meshes judged are collision meshes, and visual meshes of a link with a mass whose
+    Opt-in since issue 29: on the blind part 0 of 5 were worth fixing (holes of a few edges
+    that change no result; docs/precision.md).
+
+    The meshes judged are those a result depends on: collision meshes of a description a
+    simulator runs (one that declares masses), and visual meshes of a link with a mass whose
     inertia is judged from them (the configured `inertia-source` is "visual", or the link
     has no collision geometry); a visual mesh of a link without `<inertial>` is never
-    reported. Vertices on the rims of holes closer than a millionth of the mesh's size are
-    merged first: exporters' rounding leaves such cracks, and no consumer sees them. A mesh
-    with no hole whose only defect is edges shared by more than two faces, and whose volume
+    reported, nor a small part on a fixed joint (a mesh under 20 cm across, which Gazebo
+    lumps into its parent). M110 and M111 judge the same meshes. Vertices on the rims of
+    holes closer than a millionth of the mesh's size are merged first: exporters' rounding
+    leaves such cracks, and no consumer sees them. A mesh with no hole whose only defect is edges shared by more than two faces, and whose volume
     is still integrated exactly, is not reported (Unitree G1's exports have a few).
 
     The message says how its mass properties were obtained instead (holes capped, or the
@@ -416,13 +474,16 @@ def mesh_not_watertight(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
         return (f"is not watertight ({', '.join(parts)}); mass properties: "
                 f"{summary.method.value}")
 
-    yield from _health_findings(ctx, check)
+    yield from _health_findings(robot, ctx, check)
 
 
 @rule("M110", "mesh-inconsistent-winding", family=FAMILY, severity=Severity.WARNING,
-      needs=NEEDS)
+      needs=NEEDS, opt_in=True)
 def mesh_inconsistent_winding(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a collision mesh whose neighbouring faces disagree on their orientation.
+
+    Opt-in since issue 29: on the blind part 0 of 5 were worth fixing (industrial arms'
+    collision meshes, used by planners that ignore the winding; docs/precision.md).
 
     Why is this bad?
     Normals flip from face to face: engines that read face normals get contacts pushing
@@ -449,12 +510,16 @@ def mesh_inconsistent_winding(robot: Robot, ctx: RuleContext) -> Iterator[Findin
         return (f"has {summary.health.misoriented_edges} edges where the winding flips; "
                 f"mass properties: {summary.method.value}")
 
-    yield from _health_findings(ctx, check)
+    yield from _health_findings(robot, ctx, check)
 
 
 @rule("M111", "mesh-inverted", family=FAMILY, severity=Severity.WARNING, needs=NEEDS)
 def mesh_inverted(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a closed collision mesh whose faces all point inward (a negative volume).
+
+    The volume must be at least 1% of the mesh's bounding box: a surface that encloses
+    (almost) nothing, an open sheet or a flat part, has a volume whose sign is rounding,
+    not an orientation.
 
     Why is this bad?
     Engines treat the outside as the inside: contacts pull objects in instead of pushing
@@ -475,18 +540,23 @@ def mesh_inverted(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     ```
     """
     def check(summary: MeshSummary) -> str | None:
-        if summary.signed_volume < 0 and summary.health.encloses_volume:
+        box = summary.extent[0] * summary.extent[1] * summary.extent[2]
+        if (summary.signed_volume < 0 and summary.health.encloses_volume
+                and -summary.signed_volume >= INVERTED_VOLUME_FRACTION * box > 0):
             return (f"is inverted: its faces point inward (signed volume "
-                    f"{summary.signed_volume:.4g} m^3)")
+                    f"{summary.signed_volume:.4g} m^3, {-summary.signed_volume / box:.0%} of "
+                    "its bounding box)")
         return None
 
-    yield from _health_findings(ctx, check)
+    yield from _health_findings(robot, ctx, check)
 
 
-@rule("M112", "mesh-degenerate-faces", family=FAMILY, severity=Severity.INFO, needs=NEEDS)
+@rule("M112", "mesh-degenerate-faces", family=FAMILY, severity=Severity.INFO, needs=NEEDS,
+      opt_in=True)
 def mesh_degenerate_faces(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a collision mesh with degenerate faces (a repeated vertex or no area), or one
-    that encloses no volume at all.
+    that encloses no volume at all. Opt-in (info): no consumer is hurt by a few zero-area
+    faces, and the blind sample of issue 29 judged them noise.
 
     Why is this bad?
     Zero-area faces have no normal: collision checkers skip them or divide by zero, and
@@ -514,14 +584,19 @@ def mesh_degenerate_faces(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
             return (f"has {count} degenerate faces (of {summary.health.triangles})")
         return None
 
-    yield from _health_findings(ctx, check)
+    yield from _health_findings(robot, ctx, check)
 
 
 @rule("M113", "collision-uses-visual-mesh", family=FAMILY, severity=Severity.WARNING,
-      needs=NEEDS)
+      needs=NEEDS, opt_in=True)
 def collision_uses_visual_mesh(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a collision geometry that is the link's visual mesh file itself, when that
-    mesh has more triangles than the collision budget.
+    mesh has more triangles than the collision budget. A small part on a fixed joint (a mesh
+    under 20 cm across: a camera, a sensor housing) is not reported: Gazebo lumps it into
+    its parent and its contacts cost little.
+
+    Opt-in since issue 29: on the blind part 2 of 5 were worth fixing (meshes just over the
+    budget; docs/precision.md).
 
     Why is this bad?
     Visual meshes are detailed for looks; as collision geometry they make every contact
@@ -552,8 +627,11 @@ def collision_uses_visual_mesh(robot: Robot, ctx: RuleContext) -> Iterator[Findi
     for link, kind, _index, _ref, found in entries:
         if kind == "visual" and found.resolution.ok and found.resolution.path is not None:
             visual_paths.setdefault(link.name, set()).add(found.resolution.path)
+    parents = parent_joint_of(robot)
     for link, kind, index, ref, found in entries:
         if kind != "collision" or not found.resolution.ok:
+            continue
+        if _small_fixed_part(parents, link, found.summary):
             continue
         if found.resolution.path in visual_paths.get(link.name, ()):
             triangles = found.summary.health.triangles if found.summary else 0
@@ -565,11 +643,15 @@ def collision_uses_visual_mesh(robot: Robot, ctx: RuleContext) -> Iterator[Findi
 
 
 @rule("M114", "collision-mesh-over-budget", family=FAMILY, severity=Severity.WARNING,
-      needs=NEEDS)
+      needs=NEEDS, opt_in=True)
 def collision_mesh_over_budget(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a collision mesh with more triangles than the budget
     (`[tool.robotdesc.meshes] collision-triangle-budget`, 10 000 by default) that is not
-    the link's visual mesh (that case is M113's).
+    the link's visual mesh (that case is M113's). Small parts on fixed joints are left out,
+    as in M113.
+
+    Opt-in since issue 29: on the blind part 2 of 5 were worth fixing (meshes just over the
+    budget; docs/precision.md).
 
     Why is this bad?
     Collision checking costs grow with the triangle count; a physics engine steps slower
@@ -595,10 +677,13 @@ def collision_mesh_over_budget(robot: Robot, ctx: RuleContext) -> Iterator[Findi
     entries = list(_lookups(ctx))
     visual_paths = {(link.name, found.resolution.path) for link, kind, _i, _r, found in entries
                     if kind == "visual" and found.resolution.ok}
+    parents = parent_joint_of(robot)
     for link, kind, index, ref, found in entries:
         if kind != "collision" or found.summary is None:
             continue
         if (link.name, found.resolution.path) in visual_paths:
+            continue
+        if _small_fixed_part(parents, link, found.summary):
             continue
         triangles = found.summary.health.triangles
         if triangles > budget:

@@ -31,7 +31,7 @@ def _is_absolute(filename: str) -> bool:
     return filename.startswith("/") or bool(_WINDOWS_DRIVE.match(filename))
 
 
-def _made_by_find(filename: str, ctx: RuleContext) -> bool:
+def made_by_find(filename: str, ctx: RuleContext) -> bool:
     """Whether an absolute path lies in a package folder that `$(find pkg)` resolved in this
     expansion: the source wrote `$(find pkg)/...` (portable); the expanded URDF, which holds
     this machine's path, is made where it is used."""
@@ -72,7 +72,7 @@ def absolute_mesh_path(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     ```
     """
     for mesh, element in _meshes(robot):
-        if _is_absolute(mesh.filename) and not _made_by_find(mesh.filename, ctx):
+        if _is_absolute(mesh.filename) and not made_by_find(mesh.filename, ctx):
             yield Finding(f"mesh filename '{mesh.filename}' is an absolute path",
                           mesh.where, element)
 
@@ -107,7 +107,7 @@ def file_uri_mesh(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     ```
     """
     for mesh, element in _meshes(robot):
-        if mesh.filename.lower().startswith("file://") and not _made_by_find(mesh.filename, ctx):
+        if mesh.filename.lower().startswith("file://") and not made_by_find(mesh.filename, ctx):
             yield Finding(f"mesh filename '{mesh.filename}' is a file:// URI",
                           mesh.where, element)
 

@@ -111,8 +111,8 @@ class Rule:
         check: the generator function.
         options: the frozen dataclass type of its options (None when it has none).
         needs: what it reads besides the model: "expansion", "meshes".
-        opt_in: off by default; runs only when a selector other than "ALL" names it
-            (its code, a prefix of it, or its name) in --select or the config.
+        opt_in: off by default; runs only when a selector of --select or the config's
+            `select` names it (its code, a prefix of it, its name, or "ALL").
     """
 
     code: str

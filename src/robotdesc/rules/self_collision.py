@@ -233,12 +233,13 @@ def one_dof_pairs(robot: Robot, pairs: list[Pair]) -> set[Pair]:
 
 
 @rule("K203", "links-always-in-contact", family=FAMILY, severity=Severity.INFO,
-      needs=("meshes", "pinocchio"))
+      needs=("meshes", "pinocchio"), opt_in=True)
 def links_always_in_contact(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds pairs of links, not adjacent, whose collision geometry overlaps at the default
     configuration and at every sampled configuration of the joints: links in contact by
     design (the bars of a mimic-coupled four-bar linkage, a hand's safety box). They are
-    reported once, with the SRDF lines that disable them.
+    reported once, with the SRDF lines that disable them. Opt-in (info): the contacts are
+    by design; turn it on to write a MoveIt SRDF's disabled pairs.
 
     Pairs in contact at the default configuration only because joints sit at a limit there
     (fingers of a gripper closed at 0, an arm folded into its rest pose), which part when

@@ -101,10 +101,13 @@ def unknown_element(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
 
 
 @rule("S202", "unknown-attribute", family="structure", severity=Severity.WARNING,
-      needs=("document",))
+      needs=("document",), opt_in=True)
 def unknown_attribute(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds an attribute that URDF does not define on its element: a misspelt name
     (`uper="1"`, `<inertia iyx=...>`), or one that belongs to another element.
+
+    Opt-in since issue 29: on the blind part 0 of 5 were worth fixing (a redundant symmetric
+    entry, an attribute no consumer reads; docs/precision.md).
 
     The message names the closest attribute the element defines (preferring one that is
     missing). Known extension attributes (Isaac Sim's `dont_collapse`, Franka's dynamics
