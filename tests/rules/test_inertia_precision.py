@@ -25,9 +25,10 @@ URDF = """<?xml version="1.0"?>
     <collision><geometry><box size="0.01 0.01 0.01"/></geometry></collision>
   </link>
   <joint name="sensor_joint" type="fixed"><parent link="base"/><child link="sensor_link"/></joint>
-  <!-- a finger whose typed-in tensor is inflated on purpose (TIAGo's hand): I206, opt-in -->
+  <!-- a finger whose typed-in tensor is inflated on purpose (TIAGo's hand, which says so
+       next to it): I206, opt-in; without the comment, 60x too large is I204's (issue 29) -->
   <link name="finger">
-    <inertial><mass value="0.05"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial>
+    <inertial><mass value="0.05"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/> <!-- To stabilize simulation --></inertial>
     <collision><geometry><box size="0.02 0.02 0.06"/></geometry></collision>
   </link>
   <joint name="finger_joint" type="revolute"><parent link="base"/><child link="finger"/>
