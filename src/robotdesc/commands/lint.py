@@ -72,6 +72,9 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
     lint.add_argument("--statistics", action="store_true",
                       help="print the number of findings per rule instead of the findings "
                            "(text or json)")
+    lint.add_argument("--variants", action="store_true",
+                      help="with name:=value arguments, lint every config variant of a file "
+                           "with them (default: the arguments replace the variants: one run)")
     lint.add_argument("--jobs", "-j", type=int, default=1, metavar="N",
                       help="lint N targets at once in worker processes (0: one per CPU; "
                            "default: 1)")
@@ -109,6 +112,7 @@ def run_lint(ns: argparse.Namespace) -> int:
         if discovery.directory:
             _write_discovery(sys.stderr, discovery)
         targets.extend(discovery.targets)
+    targets = _with_cli_arguments(ns, targets, args)
     _check_lint_outputs(ns, targets)
     if ns.fix or ns.diff:
         from robotdesc.commands.lint_fix import run_fixes
@@ -133,6 +137,25 @@ def run_lint(ns: argparse.Namespace) -> int:
                                                         failure.error)))
     _write_report(ns, results, failures, min(fail_on.values(), default=Severity.INFO), inputs)
     return EXIT_INPUT if failures else EXIT_FINDINGS if failed else EXIT_OK
+
+
+def _with_cli_arguments(ns: argparse.Namespace, targets: list[LintTarget],
+                        args: dict[str, str]) -> list[LintTarget]:
+    """Check the command line's xacro arguments before any lint (an undeclared one is a
+    usage error), and let them replace a file's config variants unless --variants."""
+    if not args:
+        return targets
+    from robotdesc.linting.arguments import check_cli_arguments, one_run_per_file  # lxml
+
+    check_cli_arguments(targets, args)
+    if ns.variants:
+        return targets
+    targets, replaced = one_run_per_file(targets)
+    for path in replaced:
+        given = " ".join(f"{name}:={value}" for name, value in args.items())
+        sys.stderr.write(f"robotdesc: {target_name(path)}: linting once with {given} instead "
+                         "of its config variants (--variants: each variant with them)\n")
+    return targets
 
 
 def selectors(values: Sequence[str], flag: str) -> list[str]:
