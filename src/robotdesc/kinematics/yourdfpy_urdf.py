@@ -16,7 +16,7 @@ from typing import Any
 from robotdesc.errors import UsageError
 from robotdesc.expansion.result import Expanded
 from robotdesc.mesh.locate import MeshLocator
-from robotdesc.model.elements import MeshRef, Robot
+from robotdesc.model.elements import Collision, MeshRef, Robot, Visual
 from robotdesc.model.write import urdf_text
 
 #: How to install the extra.
@@ -28,8 +28,8 @@ def mesh_filename_handler(robot: Robot, locator: MeshLocator) -> Callable[[str],
     resolves to (absolute path), or the filename unchanged when it does not resolve."""
     found: dict[str, str] = {}
     for link in robot.links:
-        for shape in (*link.visuals, *link.collisions):
-            geometry = shape.geometry
+        shapes: list[Visual | Collision] = [*link.visuals, *link.collisions]
+        for geometry in (shape.geometry for shape in shapes):
             if isinstance(geometry, MeshRef) and geometry.filename not in found:
                 path = locator.path(geometry)
                 if path is not None:
