@@ -15,6 +15,7 @@ Heavy modules (xacro, lxml, the rules) are imported on first use, so `import rob
 from __future__ import annotations
 
 import dataclasses
+import os
 import sys
 from typing import TYPE_CHECKING, Any, Literal, Mapping, Sequence
 
@@ -26,8 +27,6 @@ if "IPython" in sys.modules:  # a notebook: results render as the report's table
     _notebook.register()
 
 if TYPE_CHECKING:  # pragma: no cover
-    import os
-
     from robotdesc.collision.result import CollisionResult
     from robotdesc.config import Config
     from robotdesc.expansion.result import Expanded
@@ -253,8 +252,6 @@ def to_yourdfpy(source: "str | os.PathLike[str] | LintResult | Expanded", *,
         robotdesc.errors.InputError: the file could not be expanded or parsed.
         robotdesc.errors.UsageError: yourdfpy is not installed, or arguments with a result.
     """
-    import os
-
     from robotdesc.config import discover_config
     from robotdesc.errors import UsageError
     from robotdesc.expansion.result import Expanded as ExpandedType
