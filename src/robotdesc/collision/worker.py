@@ -95,12 +95,15 @@ def _main_module_hidden() -> Iterator[None]:
 
 def _child(function: Callable[[Any], Any], argument: Any, connection: _Pipe) -> None:
     try:
-        result = function(argument)
-    except BaseException as error:  # reported to the parent, which decides; not swallowed
-        connection.send(("exception", f"{type(error).__name__}: {error}",
-                         traceback.format_exc()))
-    else:
-        connection.send(("ok", result, ""))
+        try:
+            result = function(argument)
+        except BaseException as error:  # reported to the parent, which decides; not swallowed
+            connection.send(("exception", f"{type(error).__name__}: {error}",
+                             traceback.format_exc()))
+        else:
+            connection.send(("ok", result, ""))
+    except (BrokenPipeError, EOFError):  # the parent is gone (terminated): nobody to tell
+        pass
     connection.close()
 
 
