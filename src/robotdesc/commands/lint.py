@@ -23,11 +23,12 @@ from robotdesc.commands.inputs import (
 )
 from robotdesc.config import load_config
 from robotdesc.diagnostics import Severity
-from robotdesc.errors import InputError, UsageError
+from robotdesc.errors import PINOCCHIO_HINT, InputError, UsageError
+from robotdesc.kinematics.optional import pinocchio_available
 from robotdesc.linting.baseline import apply_baseline, read_baseline, render_baseline
 from robotdesc.linting.inputs import run_inputs
 from robotdesc.linting.result import LintFailure, LintResult
-from robotdesc.linting.select import check_selectors
+from robotdesc.linting.select import best_match, check_selectors
 from robotdesc.linting.targets import Discovery, LintTarget, discover_targets, target_name
 from robotdesc.output import RunInputs, check_output, write_output
 from robotdesc.progress import progress_for
@@ -97,6 +98,7 @@ def run_lint(ns: argparse.Namespace) -> int:
         raise UsageError("--jobs must be 0 (one per CPU) or positive")
     paths, args = split_inputs(ns.inputs)
     select = selectors(ns.select, "--select") or None
+    _note_skipped_kinematics(select)
     ignore = selectors(ns.ignore, "--ignore")
     options = expand_options(ns)
     explicit = load_config(ns.config) if ns.config else None
@@ -156,6 +158,20 @@ def _with_cli_arguments(ns: argparse.Namespace, targets: list[LintTarget],
         sys.stderr.write(f"robotdesc: {target_name(path)}: linting once with {given} instead "
                          "of its config variants (--variants: each variant with them)\n")
     return targets
+
+
+def _note_skipped_kinematics(select: Sequence[str] | None) -> None:
+    """Warn when --select names rules that need Pinocchio and it is not installed (a lint
+    that only runs them by default says so with -v)."""
+    from robotdesc.rules.catalog import all_rules
+
+    if not select or pinocchio_available():
+        return
+    chosen = [rule.code for rule in all_rules() if rule.family == "kinematics"
+              and best_match(select, rule.code, rule.name) > 1]
+    if chosen:
+        log.warning("%s skipped: Pinocchio is not installed; %s", ", ".join(chosen),
+                    PINOCCHIO_HINT)
 
 
 def selectors(values: Sequence[str], flag: str) -> list[str]:
