@@ -49,3 +49,9 @@ def test_other_lines_columns_or_numbers_stay_apart() -> None:
 def test_the_element_name_is_taken_out_of_the_message_as_a_word() -> None:
     assert element_name("link:base/visual[0]") == "base" and element_name("") == ""
     assert message_key(_limit("a")) == "joint '\0' lower limit 0.5 is above its upper limit -0.5"
+
+
+def test_long_element_lists_are_counted() -> None:
+    (finding,) = merge_findings([_result(*(_limit(f"wheel_{n}") for n in range(20)))])
+    assert finding.elements_text() == ("20 elements: " + ", ".join(
+        f"joint:wheel_{n}" for n in range(8)) + ", ... 12 more")

@@ -24,6 +24,8 @@ RunArgs = tuple[tuple[str, str], ...]
 
 #: Variants listed by name in a merged finding's note; more are counted.
 LISTED_VARIANTS = 4
+#: Elements listed by name under a merged finding; more are counted.
+LISTED_ELEMENTS = 8
 
 
 @dataclass(frozen=True)
@@ -64,6 +66,16 @@ class MergedFinding:
         more = f" and {len(labels) - LISTED_VARIANTS} more" if len(labels) > LISTED_VARIANTS \
             else ""
         return f" (only in variant{'s' if len(labels) > 1 else ''} {shown}{more})"
+
+    def elements_text(self) -> str:
+        """"6 elements: joint:a, joint:b, ..." ("" for one element); past LISTED_ELEMENTS,
+        the rest are counted."""
+        if len(self.elements) <= 1:
+            return ""
+        shown = ", ".join(self.elements[:LISTED_ELEMENTS])
+        more = len(self.elements) - LISTED_ELEMENTS
+        return f"{len(self.elements)} elements: {shown}" + (f", ... {more} more" if more > 0
+                                                            else "")
 
     def variants_text(self) -> str:
         """The variants as one line: "in all 3 variants: [default arguments], ..." or

@@ -64,7 +64,7 @@ def _annotation(finding: MergedFinding, root: str) -> str:
                        for site, names in passed_sites(diagnostic.where.passed
                                                        if diagnostic.where else ()))
     if len(finding.elements) > 1:
-        message += f"\n{len(finding.elements)} elements: {', '.join(finding.elements)}"
+        message += f"\n{finding.elements_text()}"
     if finding.runs > 1 and finding.in_all_variants:
         message += f"\n{finding.variants_text()}"
     return workflow_command(

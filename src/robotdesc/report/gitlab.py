@@ -34,8 +34,7 @@ def render_gitlab(results: Sequence[Any], failures: Sequence[Any] = (), *,
         d = finding.diagnostic
         target = target_name(finding.target, (), root)
         span = d.where.span if d.where else None
-        elements = (f" ({len(finding.elements)} elements: {', '.join(finding.elements)})"
-                    if len(finding.elements) > 1 else "")
+        elements = f" ({finding.elements_text()})" if len(finding.elements) > 1 else ""
         issues.append(_issue(f"{d.code} {d.name}: {d.message}{finding.variant_note()}{elements}",
                              d.code, _SEVERITY[d.severity],
                              target_name(span.path if span else finding.target, (), root),

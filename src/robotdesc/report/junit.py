@@ -138,7 +138,7 @@ def _finding_text(finding: MergedFinding, root: str) -> str:
     lines += [f"  value passed at {_location(site, site.path, root)} ({', '.join(names)})"
               for site, names in passed_sites(diagnostic.where.passed if diagnostic.where else ())]
     if len(finding.elements) > 1:
-        lines.append(f"  {len(finding.elements)} elements: {', '.join(finding.elements)}")
+        lines.append(f"  {finding.elements_text()}")
     if finding.runs > 1 and finding.in_all_variants:
         lines.append(f"  {finding.variants_text()}")
     return "\n".join(lines)

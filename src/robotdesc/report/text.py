@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, Any, TextIO
 
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.errors import InputError
-from robotdesc.linting.merge import MergedFinding, merge_findings
+from robotdesc.linting.merge import LISTED_ELEMENTS, MergedFinding, merge_findings
 from robotdesc.source import Span, passed_sites
 
 if TYPE_CHECKING:
@@ -197,7 +197,10 @@ def merged_lines(finding: MergedFinding, show: Callable[[str], str]) -> list[Lin
             if occurrence.element not in sites:
                 sites[occurrence.element] = (f" (from {_location(stack[0], show, '')})"
                                              if stack else "")
-        listed = ", ".join(f"{element}{sites.get(element, '')}" for element in finding.elements)
+        listed = ", ".join(f"{element}{sites.get(element, '')}"
+                           for element in finding.elements[:LISTED_ELEMENTS])
+        more = len(finding.elements) - LISTED_ELEMENTS
+        listed += f", ... {more} more" if more > 0 else ""
         lines.append([(f"{gutter} = ", "blue"),
                       (f"{len(finding.elements)} elements: {listed}", "")])
     variants = finding.variants_text() if finding.in_all_variants else ""  # else: head line
