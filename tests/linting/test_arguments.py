@@ -57,7 +57,7 @@ def test_an_undeclared_argument_is_a_usage_error_before_any_lint(package: Path, 
 def test_arguments_on_a_plain_urdf_are_a_usage_error(tmp_path: Path, capsys) -> None:
     (tmp_path / "r.urdf").write_text('<robot name="r"><link name="a"/></robot>\n')
     assert main(["lint", str(tmp_path / "r.urdf"), "x:=1"]) == 2
-    assert "plain URDF: it takes no xacro arguments" in capsys.readouterr().err
+    assert "is a plain URDF: no xacro arguments apply" in capsys.readouterr().err
 
 
 def test_cli_arguments_replace_the_config_variants_unless_variants(package: Path,

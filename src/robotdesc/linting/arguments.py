@@ -14,7 +14,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 from robotdesc.errors import InputError, UsageError
-from robotdesc.linting.targets import LintTarget, include_path, xacro_name
+from robotdesc.linting.targets import LintTarget, include_path, target_name, xacro_name
 from robotdesc.xml_input import MAX_XML_FILE_BYTES, parse_xml
 
 #: `$(arg name)` or `xacro.arg('name')` anywhere in a file's text.
@@ -101,22 +101,22 @@ def check_cli_arguments(targets: Sequence[LintTarget], args: Mapping[str, str]) 
     if not all(f.complete for f in found.values()):
         return
     declared = list(dict.fromkeys(n for f in found.values() for n in f.names))
-    files = list(dict.fromkeys(os.path.relpath(t.path) if not os.path.relpath(t.path)
-                               .startswith("..") else t.path for t in targets))
-    shown = files[0] if len(files) == 1 else f"{len(files)} descriptions"
+    files = list(dict.fromkeys(target_name(t.path) for t in targets))
+    one = len(files) == 1
+    shown = files[0] if one else f"the {len(files)} descriptions"
     if not any(f.xacro for f in found.values()):
         given = " ".join(f"{name}:={value}" for name, value in args.items())
-        raise UsageError(f"{shown} is a plain URDF: it takes no xacro arguments "
-                         f"(given: {given})")
+        raise UsageError(f"{shown} {'is a plain URDF' if one else 'are plain URDFs'}: "
+                         f"no xacro arguments apply (given: {given})")
     for name in args:
         if name in declared:
             continue
         close = difflib.get_close_matches(name, declared, 1)
         hint = f"; did you mean '{close[0]}'?" if close else ""
-        listing = (f" It declares: {', '.join(declared)}." if declared
-                   else " It declares no arguments.")
-        raise UsageError(f"xacro argument '{name}' is not declared by {shown} nor any file it "
-                         f"includes{hint}{listing}")
+        listing = (f" {'It' if one else 'They'} declare{'s' if one else ''}: "
+                   f"{', '.join(declared)}." if declared else " No argument is declared.")
+        raise UsageError(f"xacro argument '{name}' is not declared by {shown} nor any file "
+                         f"{'it includes' if one else 'they include'}{hint}{listing}")
 
 
 def one_run_per_file(targets: Sequence[LintTarget]) -> tuple[list[LintTarget], list[str]]:
