@@ -59,6 +59,7 @@ def test_inflate_js_decodes_what_zlib_deflates(tmp_path: Path) -> None:
     assert done.stdout.strip() == "bad 0", done.stderr
 
 
+@pytest.mark.slow  # a headless browser, as tests/view/test_browser.py
 def test_the_preview_draws_the_robot_in_a_sandboxed_frame(tmp_path: Path) -> None:
     view = robotdesc.show(write_demo_package(tmp_path), lint=False)
     page = tmp_path / "preview.html"
