@@ -19,14 +19,16 @@
 # its geometry (and at the equivalent inertia boxes in 3D), generate collision meshes and
 # compare them with the visual ones. It needs no ROS and no network.
 #
-# Open it as a notebook (`jupytext --to notebook docs/tutorial.py`), or run all its cells
-# from the repository root with `python docs/tutorial.py` (robotdesc's worker processes never
-# run your script again, so a script needs no `if __name__ == "__main__":` guard for them).
-# The test suite runs it (tests/test_tutorial.py), so every
-# cell here works. Pages it writes go to `$ROBOTDESC_TUTORIAL_OUT` (default: a new temporary
-# folder).
+# Open `docs/tutorial.ipynb` in Jupyter (it is generated from `docs/tutorial.py` by
+# `python scripts/tutorial_notebook.py`, without outputs), or run all its cells with
+# `python docs/tutorial.py` (robotdesc's worker processes never run your script again, so a
+# script needs no `if __name__ == "__main__":` guard for them). Either works from any working
+# folder of a clone where robotdesc is installed; elsewhere, point `$ROBOTDESC_ENGINEER` at
+# `engineer.urdf.xacro`. The test suite runs both (tests/test_tutorial.py), so every cell here
+# works. Pages it writes go to `$ROBOTDESC_TUTORIAL_OUT` (default: a new temporary folder).
 
 # %%
+import importlib.util
 import os
 import tempfile
 from collections import Counter
@@ -35,9 +37,26 @@ from pathlib import Path
 import robotdesc
 
 WHERE = Path("robots", "engineer_description", "urdf", "engineer.urdf.xacro")
-HERE = Path(globals().get("__file__", Path.cwd() / "tutorial.py")).resolve().parent
-ENGINEER = next(folder / WHERE for folder in (HERE.parent, Path.cwd(), Path.cwd().parent)
-                if (folder / WHERE).is_file())
+
+
+def find_engineer():
+    """The Engineer's xacro: $ROBOTDESC_ENGINEER, else in the clone this file, the working
+    folder or robotdesc itself (an editable install) lies in."""
+    if os.environ.get("ROBOTDESC_ENGINEER"):
+        return Path(os.environ["ROBOTDESC_ENGINEER"]).resolve()
+    spec = importlib.util.find_spec("robotdesc")
+    starts = [Path(globals().get("__file__", "tutorial.py")).resolve(), Path.cwd().resolve()]
+    if spec is not None and spec.origin:
+        starts.append(Path(spec.origin).resolve())
+    for start in starts:
+        for folder in (start, *start.parents):
+            if (folder / WHERE).is_file():
+                return folder / WHERE
+    raise FileNotFoundError(f"{WHERE} is in a clone of robotdesc: run this from the clone, or "
+                            "set ROBOTDESC_ENGINEER to the file's path")
+
+
+ENGINEER = find_engineer()
 OUT = Path(os.environ.get("ROBOTDESC_TUTORIAL_OUT") or tempfile.mkdtemp(prefix="robotdesc-"))
 OUT.mkdir(parents=True, exist_ok=True)
 

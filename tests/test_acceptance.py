@@ -22,12 +22,15 @@ def _lint_json(*argv: str) -> tuple[int, dict, str]:
 def test_finding_in_a_macro_used_twice_points_at_the_body_with_each_call_site():
     code, report, _ = _lint_json(str(HAND))
     assert code == 1
-    found = [(d["code"], d["file"], d["line"], tuple((s["file"], s["line"]) for s in d["macro_stack"]))
-             for d in report["diagnostics"]]
-    assert sorted(found) == [
-        ("J102", str(FINGER), 10, ((str(HAND), 15),)),
-        ("J102", str(FINGER), 10, ((str(HAND), 16),)),
+    found = [(d["code"], d["file"], d["line"], tuple((s["file"], s["line"]) for s in d["macro_stack"]),
+              d["elements"]) for d in report["diagnostics"]]
+    assert found == [  # one problem in the macro body, made twice: one finding, both elements
+        ("J102", str(FINGER), 10, ((str(HAND), 15),),
+         ["joint:left_finger_joint", "joint:right_finger_joint"]),
     ]
+    text = subprocess.run([sys.executable, "-m", "robotdesc", "lint", str(HAND)],
+                          capture_output=True, text=True, timeout=600, cwd=REPO).stdout
+    assert "hand.urdf.xacro:15)" in text and "hand.urdf.xacro:16)" in text  # each call site
 
 
 @pytest.mark.skipif(not example_robot_urdfs(), reason="example-robot-data is not installed")

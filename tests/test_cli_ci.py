@@ -41,7 +41,7 @@ def test_workspace_discovery_naming_and_exit_code() -> None:
 def test_text_report_names_the_variant() -> None:
     proc = run("lint", "src/arm_description")
     assert proc.returncode == 1
-    assert "J102 [error] revolute joint 'arm_elbow' has no <limit> (variant [arm_type=long])" \
+    assert "J102 [error] revolute joint 'arm_elbow' has no <limit> (only in variant [arm_type=long])" \
         in proc.stdout
 
 

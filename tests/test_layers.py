@@ -35,6 +35,7 @@ LAZY_ALLOWED = frozenset({
     "resource", "fcntl", "termios", "ctypes", "multiprocessing", "concurrent", "subprocess",
     "traceback", "pymeshlab", "PIL", "jsonschema", "cProfile", "pstats", "IPython",
     "tomllib", "tomli",  # whichever the Python version has
+    "yourdfpy",
 })
 #: The public API imports each part of robotdesc on first use, so that `import robotdesc`
 #: (every notebook's first line, and every submodule's parent) stays cheap.

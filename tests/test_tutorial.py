@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import importlib.util
+import json
 import os
 import subprocess
 import sys
@@ -21,6 +23,8 @@ socket.socket.connect = connect
 
 REPO = Path(__file__).resolve().parents[1]
 TUTORIAL = REPO / "docs" / "tutorial.py"
+NOTEBOOK = REPO / "docs" / "tutorial.ipynb"
+CONVERTER = REPO / "scripts" / "tutorial_notebook.py"
 
 #: Run the tutorial as `python docs/tutorial.py` does (the main module is its file, which
 #: worker processes must not run again), with IP connections refused: a cell that reached
@@ -65,23 +69,29 @@ def test_tutorial_runs_offline(tmp_path: Path) -> None:
     assert "Generated collision geometry" in (tmp_path / "report.html").read_text("utf-8")
 
 
+def _converter():
+    """scripts/tutorial_notebook.py as a module."""
+    spec = importlib.util.spec_from_file_location("tutorial_notebook", CONVERTER)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
 def notebook_cells(text: str) -> list[tuple[str, str]]:
-    """The cells of a jupytext percent script as (kind, source): "# %%" starts a code cell,
-    "# %% [markdown]" a markdown cell (its "# " prefixes removed); the header is dropped."""
-    cells: list[tuple[str, list[str]]] = []
-    for line in text.splitlines():
-        if line.startswith("# %%"):
-            cells.append(("markdown" if "[markdown]" in line else "code", []))
-        elif cells:
-            cells[-1][1].append(line)
-    out = []
-    for kind, lines in cells:
-        if kind == "markdown":
-            lines = [line[2:] if line.startswith("# ") else line.lstrip("#") for line in lines]
-        source = "\n".join(lines).strip("\n")
-        if source:
-            out.append((kind, source))
-    return out
+    """The cells of a percent script as (kind, source), as the converter reads them."""
+    return _converter().percent_cells(text)
+
+
+def test_the_notebook_is_generated_from_the_script_without_outputs() -> None:
+    nbformat = pytest.importorskip("nbformat")
+    converter = _converter()
+    assert NOTEBOOK.read_text(encoding="utf-8") == converter.notebook_json(
+        TUTORIAL.read_text(encoding="utf-8")), "run: python scripts/tutorial_notebook.py"
+    notebook = nbformat.read(NOTEBOOK, as_version=4)
+    nbformat.validate(notebook)
+    assert all(not cell.get("outputs") for cell in notebook.cells)
+    assert [(c.cell_type, c.source) for c in notebook.cells] == notebook_cells(
+        TUTORIAL.read_text(encoding="utf-8"))
 
 
 def test_tutorial_cells_use_public_api_only() -> None:
@@ -101,20 +111,21 @@ def test_tutorial_cells_use_public_api_only() -> None:
 def test_tutorial_runs_as_a_notebook(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     nbformat = pytest.importorskip("nbformat")
     nbclient = pytest.importorskip("nbclient")
-    cells = notebook_cells(TUTORIAL.read_text(encoding="utf-8"))
-    assert len(cells) >= 10
-    notebook = nbformat.v4.new_notebook()
-    notebook.cells = [nbformat.v4.new_code_cell(OFFLINE_GUARD)] + [
-        nbformat.v4.new_markdown_cell(source) if kind == "markdown"
-        else nbformat.v4.new_code_cell(source) for kind, source in cells]
+    notebook = nbformat.read(NOTEBOOK, as_version=4)  # the shipped notebook
+    assert len(notebook.cells) >= 10
+    notebook.cells.insert(0, nbformat.v4.new_code_cell(OFFLINE_GUARD))
+    elsewhere = tmp_path / "elsewhere"  # not the repository: no bare StopIteration
+    elsewhere.mkdir()
     for name, value in {"ROBOTDESC_TUTORIAL_OUT": str(tmp_path / "out"),
                         "ROBOTDESC_CACHE_DIR": str(tmp_path / "cache"), "MPLBACKEND": "Agg",
                         "PYTHONPATH": os.pathsep.join(filter(None, [
                             str(REPO / "src"), os.environ.get("PYTHONPATH")]))}.items():
         monkeypatch.setenv(name, value)
     client = nbclient.NotebookClient(notebook, timeout=900, kernel_name="python3",
-                                     resources={"metadata": {"path": str(REPO / "docs")}})
+                                     resources={"metadata": {"path": str(elsewhere)}})
     client.execute()
+    weight = len(json.dumps(nbformat.from_dict(notebook)))
+    assert weight < 700_000, f"the executed notebook weighs {weight:,} bytes"
 
     def outputs(cell) -> str:
         parts = []

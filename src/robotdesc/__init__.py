@@ -15,6 +15,7 @@ Heavy modules (xacro, lxml, the rules) are imported on first use, so `import rob
 from __future__ import annotations
 
 import dataclasses
+import os
 import sys
 from typing import TYPE_CHECKING, Any, Literal, Mapping, Sequence
 
@@ -26,8 +27,6 @@ if "IPython" in sys.modules:  # a notebook: results render as the report's table
     _notebook.register()
 
 if TYPE_CHECKING:  # pragma: no cover
-    import os
-
     from robotdesc.collision.result import CollisionResult
     from robotdesc.config import Config
     from robotdesc.expansion.result import Expanded
@@ -38,7 +37,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 
 __all__ = ["__version__", "expand", "generate_collision", "html_report", "json_report", "lint",
-           "load", "mesh_inertia", "show", "to_urdf"]
+           "load", "mesh_inertia", "show", "to_urdf", "to_yourdfpy"]
 
 
 def generate_collision(robot: "Robot", method: str = "decimate",
@@ -238,3 +237,51 @@ def show(target: "str | os.PathLike[str] | Robot | LintResult",
     from robotdesc.view.show import show as run
 
     return run(target, joint_values, **options)
+
+
+def to_yourdfpy(source: "str | os.PathLike[str] | LintResult | Expanded", *,
+                package_paths: Sequence[str] = (), load_meshes: bool = True,
+                load_collision_meshes: bool = False, **xacro_args: str) -> Any:
+    """A `yourdfpy.URDF` of the expanded description (extra `yourdfpy`), its meshes resolved
+    by robotdesc's package resolver, so forward kinematics, `.scene` and `.show()` work
+    without ROS.
+
+    Args:
+        source: a description file (expanded with the config's `args` and `xacro_args`), a
+            `LintResult` from `lint`, or an `Expanded` from `expand`.
+        package_paths: folders searched for ROS packages first.
+        load_meshes: load the visual meshes (the scene); collision meshes with
+            `load_collision_meshes`.
+        **xacro_args: xacro arguments (with a file only), e.g. `with_gripper="false"`.
+
+    Raises:
+        robotdesc.errors.InputError: the file could not be expanded or parsed.
+        robotdesc.errors.UsageError: yourdfpy is not installed, or arguments with a result.
+    """
+    from robotdesc.config import discover_config
+    from robotdesc.errors import UsageError
+    from robotdesc.expansion.result import Expanded as ExpandedType
+    from robotdesc.kinematics.yourdfpy_urdf import yourdfpy_urdf
+    from robotdesc.model.parse import parse_urdf
+
+    if isinstance(source, (str, os.PathLike)):
+        path = os.fspath(source)
+        config = discover_config(path)
+        expanded = expand(path, {**dict(config.args), **xacro_args}, package_paths=package_paths)
+        robot = None
+    elif xacro_args:
+        raise UsageError("xacro arguments go with a file, not with an expanded result: "
+                         + ", ".join(sorted(xacro_args)))
+    elif isinstance(source, ExpandedType):
+        expanded, robot, config = source, None, discover_config(source.source)
+    else:  # a LintResult (its expansion may have been dropped: expand its target again)
+        config = discover_config(source.target)
+        expanded = source.expanded if source.expanded is not None else expand(
+            source.target, dict(source.args) or dict(config.args), package_paths=package_paths)
+        robot = source.robot if source.expanded is not None else None
+    if robot is None:
+        robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
+    return yourdfpy_urdf(expanded, robot, package_paths=package_paths,
+                         package_map=tuple(config.packages),
+                         allow_absolute=config.meshes.allow_absolute_paths,
+                         load_meshes=load_meshes, load_collision_meshes=load_collision_meshes)

@@ -29,6 +29,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit code (the console script exits with it)."""
     words = list(sys.argv[1:] if argv is None else argv)
     parser = build_parser(words)
+    if not words:  # bare `robotdesc`: what it can do
+        parser.print_help(sys.stdout)
+        return EXIT_OK
     try:
         ns = _parse(parser, words)
     except SystemExit as exc:  # --help, --version (0) and usage errors (2)

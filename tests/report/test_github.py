@@ -24,17 +24,16 @@ def test_github_snapshot(sample) -> None:
     assert render_github(results, failures, cwd=str(root)).splitlines() == [
         "::error file=arm.xacro,line=3,col=2,title=J101 revolute-without-limit::"
         "revolute joint 'left_elbow' has no <limit>"
-        "%0Ain macro called from robot.urdf.xacro:3%0Ain macro called from robot.urdf.xacro:4",
+        "%0Ain macro called from robot.urdf.xacro:3%0Ain macro called from robot.urdf.xacro:4"
+        "%0Ain all 2 variants: [default arguments], [side=left]",
         "::warning file=robot.urdf.xacro,line=5,title=S003 link-name-case-clash::"
-        "link 'base' clashes",
-        "::notice file=robot.urdf.xacro,title=X001 empty-robot::note",
-        "::error file=arm.xacro,line=3,col=2,title=J101 revolute-without-limit::"
-        "revolute joint 'left_elbow' has no <limit> (variant [side=left])"
-        "%0Ain macro called from robot.urdf.xacro:3%0Ain macro called from robot.urdf.xacro:4",
+        "link 'base' clashes (only in variant [default arguments])",
+        "::notice file=robot.urdf.xacro,title=X001 empty-robot::note "
+        "(only in variant [default arguments])",
         "::error file=broken.urdf.xacro,line=2,col=3,"
         "title=robotdesc%3A broken.urdf.xacro could not be checked::"
         "undefined property 'undefined'%0Ain macro called from robot.urdf.xacro:9",
-        "Found 2 errors, 1 warning, 1 info in 2 files. 1 file could not be checked.",
+        "Found 1 error, 1 warning, 1 info in 2 files. 1 file could not be checked.",
     ]
 
 

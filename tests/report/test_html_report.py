@@ -163,3 +163,10 @@ def test_collision_result_as_html() -> None:
     from robotdesc.report.notebook import html_of
 
     assert html_of(result) == html  # Jupyter shows the same table
+
+
+def test_the_header_counts_rules_as_robotdesc_rules_lists_them(report: str) -> None:
+    from robotdesc.rules.catalog import all_rules
+
+    ran, total = map(int, re.search(r"(\d+) of (\d+) rules ran", report).groups())
+    assert total == len(all_rules()) and 0 < ran < total  # opt-in rules did not run

@@ -42,6 +42,8 @@ def test_json_report_fields(sample) -> None:
         "fix": '<limit lower="-1" upper="1" effort="1" velocity="1"/>',
         "fix_applicability": None,
         "target": str(root / "robot.urdf.xacro"), "variant": {},
+        "elements": ["joint:left_elbow"], "variants": [{"args": {}, "variant": {}}],
+        "in_all_variants": True,
     }
     assert document["diagnostics"][1]["column"] is None
     assert document["diagnostics"][2]["file"] is None

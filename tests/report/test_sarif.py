@@ -53,9 +53,13 @@ def test_results_point_at_xacro_lines_with_the_macro_chain(sample) -> None:
         "joint:left_elbow"
     assert run["results"][2]["level"] == "note"  # info
     assert "region" not in run["results"][2]["locations"][0]["physicalLocation"]
-    variant = run["results"][3]
-    assert variant["properties"]["target"] == "robot.urdf.xacro[side=left]"
-    assert variant["partialFingerprints"] != in_macro["partialFingerprints"]
+    assert len(run["results"]) == 3  # the variant's finding is the first one's
+    assert in_macro["properties"]["variants"] == ["[default arguments]", "[side=left]"]
+    assert in_macro["properties"]["inAllVariants"] is True
+    only = run["results"][1]
+    assert only["properties"]["variants"] == ["[default arguments]"]
+    assert "(only in variant [default arguments])" in only["message"]["text"]
+    assert only["partialFingerprints"] != in_macro["partialFingerprints"]
     assert run["originalUriBaseIds"]["%SRCROOT%"]["uri"] == root.as_uri() + "/"
 
 

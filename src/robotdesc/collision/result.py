@@ -149,6 +149,14 @@ class CollisionResult:
     seconds: float = 0.0
     jobs: int = 1
 
+    def __repr__(self) -> str:
+        """A one-line summary (`.outcomes` holds the meshes and per-link reports)."""
+        totals = self.totals()
+        method = getattr(self.options, "method", "?")
+        return (f"<CollisionResult {self.robot.name!r} ({method}): {totals['written']} of "
+                f"{totals['links']} links written, {totals['faces_before']:,} -> "
+                f"{totals['faces_after']:,} faces, {self.seconds:.1f} s>")
+
     @property
     def failed(self) -> bool:
         """True when any link has an error or warning finding (exit code 1)."""

@@ -79,6 +79,11 @@ def single_input(ns: argparse.Namespace, verb: str) -> SingleInput:
         raise UsageError(f"{verb} takes one file, got {len(paths)}: {' '.join(paths)}")
     source = paths[0]
     config = load_config(ns.config) if ns.config else discover_config(source)
+    if os.path.isfile(source) and args:  # an undeclared one: a usage error before any work
+        from robotdesc.linting.arguments import check_cli_arguments  # lxml: not for --help
+        from robotdesc.linting.targets import LintTarget
+
+        check_cli_arguments([LintTarget(os.path.abspath(source), config)], args)
     options = expand_options(ns, config.packages)  # the config's default args may go unused
     options = dataclasses.replace(options, unchecked_args=tuple(
         name for name, _ in config.args if name not in args))

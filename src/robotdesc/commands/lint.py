@@ -24,7 +24,8 @@ from robotdesc.commands.inputs import (
 )
 from robotdesc.config import load_config
 from robotdesc.diagnostics import Severity
-from robotdesc.errors import InputError, UsageError
+from robotdesc.errors import PINOCCHIO_HINT, InputError, UsageError
+from robotdesc.kinematics.optional import pinocchio_available
 from robotdesc.linting.baseline import (
     apply_baseline,
     baseline_counts,
@@ -33,7 +34,7 @@ from robotdesc.linting.baseline import (
 )
 from robotdesc.linting.inputs import run_inputs
 from robotdesc.linting.result import LintFailure, LintResult
-from robotdesc.linting.select import check_selectors
+from robotdesc.linting.select import best_match, check_selectors
 from robotdesc.linting.targets import Discovery, LintTarget, discover_targets, target_name
 from robotdesc.output import RunInputs, check_output, write_output
 from robotdesc.progress import progress_for
@@ -79,6 +80,9 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
     lint.add_argument("--statistics", action="store_true",
                       help="print the number of findings per rule instead of the findings "
                            "(text or json)")
+    lint.add_argument("--variants", action="store_true",
+                      help="with name:=value arguments, lint every config variant of a file "
+                           "with them (default: the arguments replace the variants: one run)")
     lint.add_argument("--jobs", "-j", type=int, default=1, metavar="N",
                       help="lint N targets at once in worker processes (0: one per CPU; "
                            "default: 1)")
@@ -101,6 +105,7 @@ def run_lint(ns: argparse.Namespace) -> int:
         raise UsageError("--jobs must be 0 (one per CPU) or positive")
     paths, args = split_inputs(ns.inputs)
     select = selectors(ns.select, "--select") or None
+    _note_skipped_kinematics(select)
     ignore = selectors(ns.ignore, "--ignore")
     options = expand_options(ns)
     explicit = load_config(ns.config) if ns.config else None
@@ -119,6 +124,7 @@ def run_lint(ns: argparse.Namespace) -> int:
             "a symlink whose target lies outside the linted folder; not read", Span(link)))
             for link in discovery.refused)
         targets.extend(discovery.targets)
+    targets = _with_cli_arguments(ns, targets, args)
     _check_lint_outputs(ns, targets)
     if ns.fix or ns.diff:
         from robotdesc.commands.lint_fix import run_fixes
@@ -143,6 +149,39 @@ def run_lint(ns: argparse.Namespace) -> int:
                                                         failure.error)))
     _write_report(ns, results, failures, min(fail_on.values(), default=Severity.INFO), inputs)
     return EXIT_INPUT if failures else EXIT_FINDINGS if failed else EXIT_OK
+
+
+def _with_cli_arguments(ns: argparse.Namespace, targets: list[LintTarget],
+                        args: dict[str, str]) -> list[LintTarget]:
+    """Check the command line's xacro arguments before any lint (an undeclared one is a
+    usage error), and let them replace a file's config variants unless --variants."""
+    if not args:
+        return targets
+    from robotdesc.linting.arguments import check_cli_arguments, one_run_per_file  # lxml
+
+    check_cli_arguments(targets, args)
+    if ns.variants:
+        return targets
+    targets, replaced = one_run_per_file(targets)
+    for path in replaced:
+        given = " ".join(f"{name}:={value}" for name, value in args.items())
+        sys.stderr.write(f"robotdesc: {target_name(path)}: linting once with {given} instead "
+                         "of its config variants (--variants: each variant with them)\n")
+    return targets
+
+
+def _note_skipped_kinematics(select: Sequence[str] | None) -> None:
+    """Warn when --select names rules that need Pinocchio and it is not installed (a lint
+    that only runs them by default says so with -v)."""
+    from robotdesc.rules.catalog import all_rules
+
+    if not select or pinocchio_available():
+        return
+    chosen = [rule.code for rule in all_rules() if rule.family == "kinematics"
+              and best_match(select, rule.code, rule.name) > 1]
+    if chosen:
+        log.warning("%s skipped: Pinocchio is not installed; %s", ", ".join(chosen),
+                    PINOCCHIO_HINT)
 
 
 def selectors(values: Sequence[str], flag: str) -> list[str]:

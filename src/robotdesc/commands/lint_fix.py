@@ -13,6 +13,7 @@ from robotdesc.diagnostics import Diagnostic
 from robotdesc.expansion import ExpandOptions
 from robotdesc.linting.fix.engine import NOT_APPLICABLE, UNSAFE
 from robotdesc.linting.fix.run import fix_targets
+from robotdesc.linting.merge import finding_key
 from robotdesc.linting.targets import LintTarget
 
 log = logging.getLogger(__name__)
@@ -25,14 +26,19 @@ def run_fixes(ns: argparse.Namespace, targets: Sequence[LintTarget], args: Mappi
     run = fix_targets(targets, args=args, expand_options=options, select=select,
                       ignore=ignore, unsafe=ns.unsafe_fixes, write=not ns.diff)
     err = sys.stderr
+    said: set[str] = set()  # one line per problem, not per element and variant
     for outcome in run.outcomes:
-        if outcome.status == NOT_APPLICABLE:
-            err.write(f"robotdesc: {_where(outcome.diagnostic)}: {outcome.diagnostic.code} "
-                      f"fix not applicable: {outcome.reason}\n")
-    hidden = sum(1 for o in run.outcomes if o.status == UNSAFE)
+        line = (f"robotdesc: {_where(outcome.diagnostic)}: {outcome.diagnostic.code} "
+                f"fix not applicable: {outcome.reason}\n")
+        if outcome.status == NOT_APPLICABLE and line not in said:
+            said.add(line)
+            err.write(line)
+    hidden = len({finding_key(o.diagnostic, o.diagnostic.target) for o in run.outcomes
+                  if o.status == UNSAFE})
     if ns.diff:
         sys.stdout.write(run.diff)
-        count = sum(1 for o in run.outcomes if o.status == "fixed")
+        count = len({frozenset((e.path, e.start, e.end) for e in o.edits)
+                     for o in run.outcomes if o.status == "fixed"})
         err.write(f"robotdesc: {count} fix(es) would be applied"
                   + (f"; {hidden} more with --unsafe-fixes" if hidden else "") + "\n")
         return 1 if run.diff else 0

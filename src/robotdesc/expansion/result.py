@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 from typing import Any
 
@@ -108,6 +109,14 @@ class Expanded:
     read_args: tuple[str, ...] = ()
     env_defaults: tuple[EnvDefault, ...] = ()
     notes: tuple[ExpansionNote, ...] = ()
+
+    def __repr__(self) -> str:
+        """A one-line summary (the URDF itself is `.xml`)."""
+        args = " ".join(f"{name}:={value}" for name, value in self.args)
+        args = args if len(args) <= 200 else args[:200] + "..."
+        return (f"<Expanded {os.path.basename(self.source)!r}: {len(self.xml):,} bytes of URDF "
+                f"from {len(self.files)} file(s), {len(self.packages)} package(s)"
+                + (f", {args}" if args else "") + ">")
 
 
 def decode_input_facts(data: dict[str, Any]) -> dict[str, Any]:

@@ -6,6 +6,7 @@ the declared mass (the geometry alone says nothing about mass, only about its di
 
 from __future__ import annotations
 
+import os
 import textwrap
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -91,6 +92,12 @@ class InertiaTable:
 
     def __str__(self) -> str:
         return render_table(list(self.rows))
+
+    def __repr__(self) -> str:
+        """A one-line summary (`str()` is the whole table; Jupyter draws it)."""
+        off = sum(1 for row in self.rows if row.error is not None and row.error > 0.5)
+        return (f"<InertiaTable {os.path.basename(self.target)!r} ({self.source} geometry): "
+                f"{len(self.rows)} links, {off} differing by more than 50 %>")
 
 def inertia_table(robot: Robot, meshes: MeshAccess, tolerance: float = 0.5) -> list[InertiaRow]:
     """One row per link that declares an inertial or has geometry."""

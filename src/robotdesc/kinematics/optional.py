@@ -27,13 +27,15 @@ _NOTED: set[str] = set()
 
 
 def pinocchio_or_note(what: str) -> bool:
-    """True when Pinocchio is importable; otherwise log (once per `what`, e.g. a rule code)
-    that `what` is skipped and how to install Pinocchio."""
+    """True when Pinocchio is importable; otherwise log at info level, shown with -v (once
+    per `what`, e.g. a rule code), that `what` is skipped and how to install Pinocchio.
+    `robotdesc lint --select K...` warns by itself (commands/lint.py): a default lint
+    without the extra stays quiet."""
     if pinocchio_available():
         return True
     if what not in _NOTED:
         _NOTED.add(what)
-        log.warning("%s skipped: Pinocchio is not installed; %s", what, PINOCCHIO_HINT)
+        log.info("%s skipped: Pinocchio is not installed; %s", what, PINOCCHIO_HINT)
     return False
 
 

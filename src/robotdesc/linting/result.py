@@ -12,6 +12,9 @@ from robotdesc.errors import InputError, RuleCrashed
 
 __all__ = ["LintFailure", "LintResult", "RuleCrashed"]  # RuleCrashed: robotdesc.errors
 
+#: Diagnostics drawn in a notebook's table (a notebook stays small; all are in the result).
+_HTML_ROWS = 500
+
 
 @dataclass(frozen=True)
 class LintResult:
@@ -80,12 +83,16 @@ class LintResult:
         return f"<LintResult {self.target!r}: {counts}>"
 
     def _repr_html_(self) -> str:
-        """An HTML table of the diagnostics (for Jupyter)."""
+        """An HTML table of the diagnostics (for Jupyter; the first 500, then a count)."""
+        shown = self.diagnostics[:_HTML_ROWS]
+        more = len(self.diagnostics) - len(shown)
         rows = "".join(
             "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>".format(
                 *(html.escape(str(cell)) for cell in (
                     d.where.span if d.where else "", d.code, d.name, d.severity, d.message)))
-            for d in self.diagnostics)
+            for d in shown)
+        if more:
+            rows += f'<tr><td colspan="5">... {more} more (see .diagnostics)</td></tr>'
         head = ("<tr><th>location</th><th>code</th><th>rule</th><th>severity</th>"
                 "<th>message</th></tr>")
         caption = html.escape(repr(self))

@@ -217,7 +217,7 @@ def included_by_others(robots: list[str], others: list[str],
         if root is None:
             continue
         for element in root.iter():
-            if isinstance(element.tag, str) and _xacro_name(element)[0] == "include":
+            if isinstance(element.tag, str) and xacro_name(element)[0] == "include":
                 pattern = _include_pattern(element.get("filename") or "", file, packages)
                 if pattern is not None:
                     includes[file] |= {by_real[real] for real in fnmatch.filter(by_real, pattern)
@@ -303,7 +303,7 @@ def is_srdf(path: str, root: XmlElement | None = None) -> bool:
     root = _read_root(path) if root is None else root
     if root is None or _local_name(root) != "robot":
         return False
-    names = {_xacro_name(element) for element in _top_level(root)}
+    names = {xacro_name(element) for element in _top_level(root)}
     return (any(name in _SRDF_ELEMENTS for name, is_xacro in names if not is_xacro)
             and not any(name in ("link", "joint") for name, is_xacro in names if not is_xacro))
 
@@ -342,7 +342,7 @@ def _local_name(element: XmlElement) -> str:
 
 def _uses_xacro(root: XmlElement) -> bool:
     """Whether a document holds xacro elements (a declared namespace alone is not use)."""
-    return any(_xacro_name(element)[1] for element in root.iter()
+    return any(xacro_name(element)[1] for element in root.iter()
                if isinstance(element.tag, str))
 
 
@@ -355,7 +355,7 @@ def _makes_something(path: str, root: XmlElement, packages: dict[str, str], seen
     """
     includes, macros = [], False
     for element in _top_level(root):
-        name, is_xacro = _xacro_name(element)
+        name, is_xacro = xacro_name(element)
         if not is_xacro:
             if name in ("link", "joint", "include"):
                 return True  # an unprefixed <include> (NAO's): linting says what is wrong
@@ -368,7 +368,7 @@ def _makes_something(path: str, root: XmlElement, packages: dict[str, str], seen
     if macros or not includes:
         return False
     for filename in includes:
-        included = _include_path(filename, path, packages)
+        included = include_path(filename, path, packages)
         if included is None or depth >= _MAX_INCLUDE_DEPTH:
             return True  # cannot tell: assume it makes the robot
         real = os.path.realpath(included)
@@ -380,7 +380,7 @@ def _makes_something(path: str, root: XmlElement, packages: dict[str, str], seen
     return False
 
 
-def _include_path(filename: str, including: str, packages: dict[str, str]) -> str | None:
+def include_path(filename: str, including: str, packages: dict[str, str]) -> str | None:
     """The file an include names, when it can be known without expanding; else None."""
     found = _without_find(filename, including, packages)
     if found is None:
@@ -485,14 +485,14 @@ def _top_level(root: XmlElement) -> Iterator[XmlElement]:
     for element in root:
         if not isinstance(element.tag, str):
             continue
-        name, is_xacro = _xacro_name(element)
+        name, is_xacro = xacro_name(element)
         if is_xacro and name in ("if", "unless"):
             yield from _top_level(element)
         else:
             yield element
 
 
-def _xacro_name(element: XmlElement) -> tuple[str, bool]:
+def xacro_name(element: XmlElement) -> tuple[str, bool]:
     """(local name, whether it is a xacro element) of an element."""
     from lxml import etree
 

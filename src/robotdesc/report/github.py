@@ -13,8 +13,8 @@ import os
 from collections.abc import Sequence
 from typing import Any
 
-from robotdesc.diagnostics import Diagnostic, Severity
-from robotdesc.linting.matrix import variant_label
+from robotdesc.diagnostics import Severity
+from robotdesc.linting.merge import MergedFinding, merge_findings
 from robotdesc.linting.targets import target_name
 from robotdesc.report.text import summary_line
 from robotdesc.source import Span, passed_sites
@@ -42,10 +42,11 @@ def workflow_command(command: str, message: str, **properties: Any) -> str:
 
 def render_github(results: Sequence[Any], failures: Sequence[Any] = (), *,
                   cwd: str | None = None) -> str:
-    """Annotations for every finding and every file that could not be checked, then a
-    summary line (text ending with a newline)."""
+    """Annotations for every finding (one per problem and source location, over variants and
+    elements) and every file that could not be checked, then a summary line (text ending
+    with a newline)."""
     root = os.path.abspath(cwd or os.getcwd())
-    lines = [_annotation(d, r, root) for r in results for d in r.diagnostics]
+    lines = [_annotation(finding, root) for finding in merge_findings(results)]
     lines += [_failure(f, root) for f in failures]
     summary = "".join(text for text, _ in summary_line(results, failures))
     if summary:
@@ -53,20 +54,22 @@ def render_github(results: Sequence[Any], failures: Sequence[Any] = (), *,
     return "".join(line + "\n" for line in lines)
 
 
-def _annotation(diagnostic: Diagnostic, result: Any, root: str) -> str:
+def _annotation(finding: MergedFinding, root: str) -> str:
+    diagnostic = finding.diagnostic
     span = diagnostic.where.span if diagnostic.where else None
     stack = diagnostic.where.macro_stack if diagnostic.where else ()
-    message = diagnostic.message
-    label = variant_label(getattr(result, "variant", ()))
-    if label:
-        message += f" (variant {label})"
+    message = diagnostic.message + finding.variant_note()
     message += "".join(f"\nin macro called from {_location(site, root)}" for site in stack)
     message += "".join(f"\nvalue passed at {_location(site, root)} ({', '.join(names)})"
                        for site, names in passed_sites(diagnostic.where.passed
                                                        if diagnostic.where else ()))
+    if len(finding.elements) > 1:
+        message += f"\n{finding.elements_text()}"
+    if finding.runs > 1 and finding.in_all_variants:
+        message += f"\n{finding.variants_text()}"
     return workflow_command(
         _COMMAND[diagnostic.severity], message,
-        file=_path(span.path if span else diagnostic.target or result.target, root),
+        file=_path(span.path if span else diagnostic.target or finding.target, root),
         line=span.line if span else None, col=span.col if span else None,
         title=f"{diagnostic.code} {diagnostic.name}")
 

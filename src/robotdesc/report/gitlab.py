@@ -1,6 +1,7 @@
 """GitLab Code Quality report (the Code Climate JSON subset GitLab reads).
 
-A JSON array with one issue per finding: `description`, `check_name`, a line-free
+A JSON array with one issue per finding (a problem repeated over variants and elements is one
+issue, see robotdesc.linting.merge): `description`, `check_name`, a line-free
 `fingerprint`, `severity` (error -> major, warning -> minor, info -> info) and `location`
 (path relative to the working directory, begin line). Files that could not be checked are
 `blocker` issues with check_name "robotdesc-input-error".
@@ -16,6 +17,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from robotdesc.diagnostics import Severity
+from robotdesc.linting.merge import merge_findings, message_key
 from robotdesc.linting.targets import target_name
 
 _SEVERITY = {Severity.ERROR: "major", Severity.WARNING: "minor", Severity.INFO: "info"}
@@ -28,14 +30,17 @@ def render_gitlab(results: Sequence[Any], failures: Sequence[Any] = (), *,
     root = os.path.abspath(cwd or os.getcwd())
     issues: list[dict[str, Any]] = []
     seen: Counter[tuple[str, ...]] = Counter()  # identical findings get distinct fingerprints
-    for result in results:
-        target = target_name(result.target, getattr(result, "variant", ()), root)
-        for d in result.diagnostics:
-            span = d.where.span if d.where else None
-            issues.append(_issue(f"{d.code} {d.name}: {d.message}", d.code, _SEVERITY[d.severity],
-                                 target_name(span.path if span else result.target, (), root),
-                                 span.line if span else 0,
-                                 _occurrence(seen, target, d.code, d.element, d.message)))
+    for finding in merge_findings(results):  # one issue per problem and source location
+        d = finding.diagnostic
+        target = target_name(finding.target, (), root)
+        span = d.where.span if d.where else None
+        elements = f" ({finding.elements_text()})" if len(finding.elements) > 1 else ""
+        issues.append(_issue(f"{d.code} {d.name}: {d.message}{finding.variant_note()}{elements}",
+                             d.code, _SEVERITY[d.severity],
+                             target_name(span.path if span else finding.target, (), root),
+                             span.line if span else 0,
+                             _occurrence(seen, target, d.code, *sorted(finding.elements),
+                                         message_key(d))))
     for failure in failures:
         error = failure.error
         span = getattr(error, "span", None)

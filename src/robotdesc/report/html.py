@@ -15,6 +15,7 @@ from typing import Any, TypeVar
 from robotdesc._version import __version__
 from robotdesc.report.html_data import ReportData
 from robotdesc.report.html_plots import faces_plot, moments_plot, plots_available
+from robotdesc.rules.catalog import all_rules
 from robotdesc.view.findings import findings_by_link
 from robotdesc.view.html import view_fragment
 
@@ -309,6 +310,7 @@ def render_html_report(data: ReportData, title: str | None = None) -> str:
             f"<h1>{_e(heading)}</h1>\n"
             f'<p class="meta">{_e(os.path.relpath(result.target) if result.target else "")}'
             f" · {len(robot.links)} links, {len(robot.joints)} joints · "
-            f"{len(result.rules_run)} rules</p>\n"
+            f"{len(result.rules_run)} of {len(all_rules())} rules ran (as `robotdesc rules` "
+            "lists them; opt-in and unselected rules did not)</p>\n"
             f'<p class="counts">{counts}</p>\n<nav>{nav}</nav>\n{notes}\n{body}\n'
             "</main>\n</body>\n</html>\n")

@@ -65,15 +65,20 @@ def moments_plot(rows: Sequence[tuple[str, Vec3, Vec3]], total: int | None = Non
     shown = [r for r in rows if min(r[1]) > 0 and min(r[2]) > 0][:MAX_ROWS]
     if not shown:
         return None
+    from matplotlib.collections import LineCollection
+
     figure, axes = _figure(len(shown))
-    for y, (link, declared, derived) in enumerate(shown):
-        for d, g in zip(declared, derived):
-            axes.plot([d, g], [y, y], color="#bbbbbb", linewidth=1, zorder=1)
-        axes.scatter(declared, [y] * 3, color=DECLARED_COLOR, s=18, zorder=2,
-                     label="declared" if y == 0 else None)
-        axes.scatter(derived, [y] * 3, color=DERIVED_COLOR, marker="x", s=22, zorder=3,
-                     label="from geometry, at the declared mass" if y == 0 else None)
+    rows_y = [float(y) for y, _ in enumerate(shown) for _ in range(3)]  # one artist per kind
+    declared = [d for _, moments, _ in shown for d in moments]
+    derived = [g for _, _, moments in shown for g in moments]
+    axes.add_collection(LineCollection([[(d, y), (g, y)] for d, g, y in
+                                        zip(declared, derived, rows_y)],
+                                       colors="#bbbbbb", linewidths=1, zorder=1))
+    axes.scatter(declared, rows_y, color=DECLARED_COLOR, s=18, zorder=2, label="declared")
+    axes.scatter(derived, rows_y, color=DERIVED_COLOR, marker="x", s=22, zorder=3,
+                 label="from geometry, at the declared mass")
     axes.set_xscale("log")
+    _plain_log_ticks(axes)
     axes.set_yticks(range(len(shown)), [r[0] for r in shown], fontsize=8)
     axes.invert_yaxis()
     axes.set_xlabel("principal moment of inertia (kg·m²)")
@@ -101,6 +106,7 @@ def faces_plot(rows: Sequence[tuple[str, int, int]], total: int | None = None) -
     axes.barh([y + 0.2 for y in ys], [max(r[2], 0.8) for r in shown], height=0.4,
               color=DERIVED_COLOR, label="collision")
     axes.set_xscale("log")
+    _plain_log_ticks(axes)
     axes.set_yticks(list(ys), [r[0] for r in shown], fontsize=8)
     axes.invert_yaxis()
     axes.set_xlabel("triangles")
@@ -128,6 +134,14 @@ def _title(what: str, shown: Sequence[tuple[str, object, object]], total: int | 
     if total is None or total <= drawn:
         return f"{what}: {drawn} links{rows}"
     return f"{what}: {drawn} of the {total} links {kind}{rows}"
+
+
+def _plain_log_ticks(axes: Axes) -> None:
+    """Log-axis tick labels as plain numbers ("0.001", "1e+04"): matplotlib's default
+    typesets each with mathtext, the slowest part of drawing these plots."""
+    from matplotlib.ticker import FuncFormatter
+
+    axes.xaxis.set_major_formatter(FuncFormatter(lambda value, _: f"{value:g}"))
 
 
 def _legend_above(axes: Axes) -> None:

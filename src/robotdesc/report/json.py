@@ -13,6 +13,7 @@ from typing import Any
 
 from robotdesc._version import __version__
 from robotdesc.diagnostics import Diagnostic, Severity
+from robotdesc.linting.merge import merge_findings
 from robotdesc.rules.fixes import fix_applicability
 from robotdesc.source import Span, passed_sites
 
@@ -73,6 +74,15 @@ JSON_SCHEMA: dict[str, Any] = {
                            "fix": {"type": ["string", "null"]},
                            "fix_applicability": {"enum": ["safe", "unsafe", None]},
                            "passed_values": {"type": "array", "items": _PASSED},
+                           "elements": {"type": "array", "items": {"type": "string"}},
+                           "variants": {"type": "array", "items": {
+                               "type": "object", "required": ["args", "variant"],
+                               "properties": {
+                                   "args": {"type": "object",
+                                            "additionalProperties": {"type": "string"}},
+                                   "variant": {"type": "object",
+                                               "additionalProperties": {"type": "string"}}}}},
+                           "in_all_variants": {"type": "boolean"},
                            **_POSITION},
         }},
         "failures": {"type": "array", "items": {
@@ -124,11 +134,11 @@ def failure_dict(failure: Any) -> dict[str, Any]:
 
 
 def report_dict(results: Sequence[Any], failures: Sequence[Any] = ()) -> dict[str, Any]:
-    """The whole report for `LintResult`s and `LintFailure`s."""
+    """The whole report for `LintResult`s and `LintFailure`s: one diagnostic per problem
+    and source location (merged over variants and elements, robotdesc.linting.merge)."""
 
-    diagnostics = [d for result in results for d in result.diagnostics]
-    variants = [dict(getattr(result, "variant", ())) for result in results
-                for _ in result.diagnostics]
+    merged = merge_findings(results)
+    diagnostics = [finding.diagnostic for finding in merged]
     summary: dict[str, object] = {"files_checked": len(results),
                                   "files_not_checked": len(failures)}
     summary.update({str(level): sum(d.severity == level for d in diagnostics)
@@ -149,8 +159,14 @@ def report_dict(results: Sequence[Any], failures: Sequence[Any] = ()) -> dict[st
         "schema_version": SCHEMA_VERSION,
         "tool": {"name": "robotdesc", "version": __version__},
         "summary": summary,
-        "diagnostics": [{**diagnostic_dict(d), "variant": v}
-                        for d, v in zip(diagnostics, variants)],
+        "diagnostics": [{**diagnostic_dict(finding.diagnostic),
+                         "variant": dict(finding.variant_matrix[0]),
+                         "elements": list(finding.elements),
+                         "variants": [{"args": dict(args), "variant": dict(matrix)}
+                                      for args, matrix in zip(finding.variants,
+                                                              finding.variant_matrix)],
+                         "in_all_variants": finding.in_all_variants}
+                        for finding in merged],
         "failures": [{**failure_dict(f), "variant": dict(getattr(f, "variant", ()))}
                      for f in failures],
     }

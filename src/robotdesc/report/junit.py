@@ -1,6 +1,7 @@
 """JUnit XML report, as CI systems (GitLab, Jenkins, Azure, CircleCI) render test results.
 
-One `<testsuite>` per target (a matrix variant is its own target) and one `<testcase>` per
+One `<testsuite>` per target (its variants together: a problem repeated over variants and
+elements is one finding naming them, see robotdesc.linting.merge) and one `<testcase>` per
 rule that ran on it. A rule with findings at or above `fail_on` fails, its `<failure>`
 carrying every finding (location, message, macro call chain); findings below `fail_on` are
 listed in the test case's `<system-out>`. A target that could not be checked is a suite with
@@ -15,7 +16,8 @@ from typing import Any
 
 from lxml import etree
 
-from robotdesc.diagnostics import Diagnostic, Severity
+from robotdesc.diagnostics import Severity
+from robotdesc.linting.merge import MergedFinding, merge_findings
 from robotdesc.linting.targets import target_name
 from robotdesc.source import Span, passed_sites
 
@@ -35,8 +37,13 @@ def render_junit(results: Sequence[Any], failures: Sequence[Any] = (), *,
     """
     root_dir = os.path.abspath(cwd or os.getcwd())
     suites = etree.Element("testsuites", name="robotdesc")
+    by_target: dict[str, list[Any]] = {}
     for result in results:
-        suites.append(_result_suite(result, fail_on, root_dir))
+        by_target.setdefault(result.target, []).append(result)
+    merged = merge_findings(results)
+    for target, runs in by_target.items():
+        suites.append(_result_suite(target, runs, [f for f in merged if f.target == target],
+                                    fail_on, root_dir))
     for failure in failures:
         suites.append(_failure_suite(failure, root_dir))
     for key in ("tests", "failures", "errors", "skipped"):
@@ -46,31 +53,34 @@ def render_junit(results: Sequence[Any], failures: Sequence[Any] = (), *,
     return '<?xml version="1.0" encoding="UTF-8"?>\n' + text
 
 
-def _result_suite(result: Any, fail_on: Severity, root: str) -> etree._Element:
-    name = target_name(result.target, getattr(result, "variant", ()), root)
-    by_code: dict[str, list[Diagnostic]] = {}
-    for diagnostic in result.diagnostics:
-        by_code.setdefault(diagnostic.code, []).append(diagnostic)
-    codes = list(dict.fromkeys([*result.rules_run, *by_code]))
-    suite = _suite(name, result.target, root)
+def _result_suite(target: str, runs: Sequence[Any], findings: Sequence[MergedFinding],
+                  fail_on: Severity, root: str) -> etree._Element:
+    name = target_name(target, getattr(runs[0], "variant", ()) if len(runs) == 1 else (),
+                       root)
+    by_code: dict[str, list[MergedFinding]] = {}
+    for finding in findings:
+        by_code.setdefault(finding.diagnostic.code, []).append(finding)
+    codes = list(dict.fromkeys([*(c for r in runs for c in r.rules_run), *by_code]))
+    suite = _suite(name, target, root)
     failed = 0
-    names = {d.code: d.name for d in result.diagnostics}
+    names = {f.diagnostic.code: f.diagnostic.name for f in findings}
     for code in codes:
         found = by_code.get(code, [])
         case = etree.SubElement(suite, "testcase", name=_case_name(code, names),
-                                classname=name, file=_shown(result.target, root), time="0")
-        failing = [d for d in found if d.severity >= fail_on]
-        passing = [d for d in found if d.severity < fail_on]
+                                classname=name, file=_shown(target, root), time="0")
+        failing = [f for f in found if f.diagnostic.severity >= fail_on]
+        passing = [f for f in found if f.diagnostic.severity < fail_on]
         if failing:
             failed += 1
-            first = failing[0]
+            first = failing[0].diagnostic
             more = f" (and {len(failing) - 1} more)" if len(failing) > 1 else ""
             span = first.where.span if first.where else None
             if span and span.line:  # where the first failing finding is written
                 case.set("file", _shown(span.path, root))
                 case.set("line", str(span.line))
-            failure = etree.SubElement(case, "failure", message=first.message + more,
-                                       type=str(max(d.severity for d in failing)))
+            failure = etree.SubElement(case, "failure",
+                                       message=first.message + failing[0].variant_note() + more,
+                                       type=str(max(f.diagnostic.severity for f in failing)))
             failure.text = "\n".join(_finding_text(d, root) for d in failing)
         if passing:
             out = etree.SubElement(case, "system-out")
@@ -118,14 +128,19 @@ def _case_name(code: str, names: dict[str, str]) -> str:
     return f"{code} {rule.name}" if rule else code
 
 
-def _finding_text(diagnostic: Diagnostic, root: str) -> str:
+def _finding_text(finding: MergedFinding, root: str) -> str:
+    diagnostic = finding.diagnostic
     span = diagnostic.where.span if diagnostic.where else None
     stack = diagnostic.where.macro_stack if diagnostic.where else ()
     lines = [(f"{_location(span, diagnostic.target, root)}: {diagnostic.code} "
-              f"[{diagnostic.severity}] {diagnostic.message}")]
+              f"[{diagnostic.severity}] {diagnostic.message}{finding.variant_note()}")]
     lines += [f"  in macro called from {_location(site, site.path, root)}" for site in stack]
     lines += [f"  value passed at {_location(site, site.path, root)} ({', '.join(names)})"
               for site, names in passed_sites(diagnostic.where.passed if diagnostic.where else ())]
+    if len(finding.elements) > 1:
+        lines.append(f"  {finding.elements_text()}")
+    if finding.runs > 1 and finding.in_all_variants:
+        lines.append(f"  {finding.variants_text()}")
     return "\n".join(lines)
 
 

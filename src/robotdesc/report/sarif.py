@@ -1,6 +1,8 @@
 """SARIF 2.1.0 report, for GitHub code scanning and other SARIF viewers.
 
-One run; the driver lists every rule with its name, documentation and a help URI into
+One run; one result per problem and source location (a finding repeated over variants and
+elements is one result listing them in its properties, see robotdesc.linting.merge). The
+driver lists every rule with its name, documentation and a help URI into
 docs/rules.md. A result points at the xacro source line of the element; inside a macro the
 call sites follow as related locations (innermost first), linked from the message. Paths
 below the working directory are relative to `%SRCROOT%`, which `originalUriBaseIds` maps to
@@ -20,6 +22,7 @@ from typing import Any
 
 from robotdesc._version import __version__
 from robotdesc.diagnostics import Diagnostic, Severity
+from robotdesc.linting.merge import MergedFinding, merge_findings, message_key, run_label
 from robotdesc.linting.targets import target_name
 from robotdesc.source import Span, passed_sites
 
@@ -28,7 +31,7 @@ SARIF_SCHEMA_URI = "https://json.schemastore.org/sarif-2.1.0.json"
 INFORMATION_URI = "https://github.com/robotdesc/robotdesc"
 RULES_DOC_URI = "https://github.com/robotdesc/robotdesc/blob/main/docs/rules.md"
 SRCROOT = "%SRCROOT%"
-FINGERPRINT_KEY = "robotdescFinding/v1"
+FINGERPRINT_KEY = "robotdescFinding/v2"
 
 _LEVEL = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "note"}
 
@@ -71,7 +74,7 @@ def sarif_log(results: Sequence[Any], failures: Sequence[Any] = (), *,
             }],
             "originalUriBaseIds": {SRCROOT: {"uri": Path(root).as_uri().rstrip("/") + "/"}},
             "columnKind": "unicodeCodePoints",
-            "results": [_result(d, r, index, root) for r in results for d in r.diagnostics],
+            "results": [_result(finding, index, root) for finding in merge_findings(results)],
         }],
     }
 
@@ -106,9 +109,11 @@ def artifact_location(path: str, root: str) -> dict[str, str]:
     return {"uri": urllib.parse.quote(relative.replace(os.sep, "/")), "uriBaseId": SRCROOT}
 
 
-def fingerprint(diagnostic: Diagnostic, target: str) -> str:
-    """A line-free identity of a finding (target, code, element, message)."""
-    material = f"{target}\0{diagnostic.code}\0{diagnostic.element}\0{diagnostic.message}"
+def fingerprint(diagnostic: Diagnostic, target: str, elements: Sequence[str] = ()) -> str:
+    """A line-free identity of a finding: its target (without variant), code, elements and
+    message (the element's name aside), the same whichever variants it occurs in."""
+    names = "\0".join(sorted(elements or [diagnostic.element]))
+    material = f"{target}\0{diagnostic.code}\0{names}\0{message_key(diagnostic)}"
     return hashlib.sha256(material.encode("utf-8")).hexdigest()[:32]
 
 
@@ -123,17 +128,17 @@ def _physical(span: Span | None, fallback: str, root: str) -> dict[str, Any]:
     return location
 
 
-def _result(diagnostic: Diagnostic, result: Any, index: dict[str, int],
-            root: str) -> dict[str, Any]:
+def _result(finding: MergedFinding, index: dict[str, int], root: str) -> dict[str, Any]:
+    diagnostic = finding.diagnostic
     span = diagnostic.where.span if diagnostic.where else None
     stack = diagnostic.where.macro_stack if diagnostic.where else ()
-    target = target_name(result.target, getattr(result, "variant", ()), root)
-    location: dict[str, Any] = {"physicalLocation": _physical(span, result.target, root)}
-    if diagnostic.element:
-        location["logicalLocations"] = [{"fullyQualifiedName": diagnostic.element,
-                                         "name": diagnostic.element.split(":", 1)[-1],
-                                         "kind": "element"}]
-    message = diagnostic.message
+    target = target_name(finding.target, (), root)
+    location: dict[str, Any] = {"physicalLocation": _physical(span, finding.target, root)}
+    if finding.elements:
+        location["logicalLocations"] = [{"fullyQualifiedName": element,
+                                         "name": element.split(":", 1)[-1],
+                                         "kind": "element"} for element in finding.elements]
+    message = diagnostic.message + finding.variant_note()
     related = []
     for number, site in enumerate(stack, 1):
         related.append({"id": number, "physicalLocation": _physical(site, site.path, root),
@@ -158,8 +163,13 @@ def _result(diagnostic: Diagnostic, result: Any, index: dict[str, int],
         "level": _LEVEL[diagnostic.severity],
         "message": {"text": message},
         "locations": [location],
-        "partialFingerprints": {FINGERPRINT_KEY: fingerprint(diagnostic, target)},
-        "properties": {"target": target, "element": diagnostic.element},
+        "partialFingerprints": {FINGERPRINT_KEY: fingerprint(diagnostic, target,
+                                                             finding.elements)},
+        "properties": {"target": target, "element": diagnostic.element,
+                       "elements": list(finding.elements),
+                       "variants": [run_label(args, matrix) for args, matrix
+                                    in zip(finding.variants, finding.variant_matrix)],
+                       "inAllVariants": finding.in_all_variants},
     }
     if diagnostic.code in index:
         entry["ruleIndex"] = index[diagnostic.code]

@@ -14,6 +14,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from robotdesc.linting.merge import merge_findings
 from robotdesc.report.table import render_table
 
 if TYPE_CHECKING:
@@ -38,15 +39,16 @@ class CodeCount:
 
 
 def code_counts(results: Sequence[Any]) -> list[CodeCount]:
-    """Findings counted per rule code, most first, then by code."""
+    """Findings counted per rule code, most first, then by code (a problem repeated over
+    variants and elements counts once, as in the reports)."""
     counts: Counter[str] = Counter()
     names: dict[str, str] = {}
     worst: dict[str, Severity] = {}
-    for result in results:
-        for d in result.diagnostics:
-            counts[d.code] += 1
-            names[d.code] = d.name
-            worst[d.code] = max(worst.get(d.code, d.severity), d.severity)
+    for finding in merge_findings(results):
+        d = finding.diagnostic
+        counts[d.code] += 1
+        names[d.code] = d.name
+        worst[d.code] = max(worst.get(d.code, d.severity), d.severity)
     return [CodeCount(code, names[code], str(worst[code]), n)
             for code, n in sorted(counts.items(), key=lambda item: (-item[1], item[0]))]
 

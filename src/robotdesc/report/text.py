@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING, Any, TextIO
 from robotdesc.cache_dir import read_regular_file
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.errors import InputError
-from robotdesc.linting.matrix import variant_label
+from robotdesc.linting.merge import LISTED_ELEMENTS, MergedFinding, merge_findings
 from robotdesc.source import Span, passed_sites
 
 if TYPE_CHECKING:
@@ -93,14 +93,14 @@ def render_lines(results: Sequence[LintResult], failures: Sequence[LintFailure] 
         return shown[path]
 
     lines: list[Line] = []
-    for result in results:
-        variant = variant_label(getattr(result, "variant", ()))
-        for diagnostic in result.diagnostics:
-            found = _diagnostic_lines(diagnostic, show, cache, show_source)
-            if variant:  # a matrix variant of its target: say which
-                found[0] = [*found[0], (f" (variant {variant})", "")]
-            lines.extend(found)
-            lines.append([])
+    for finding in merge_findings(results):
+        found = _diagnostic_lines(finding.diagnostic, show, cache, show_source)
+        note = finding.variant_note()
+        if note:  # only some variants of its target: say which
+            found[0] = [*found[0], (note, "")]
+        lines.extend(found)
+        lines.extend(merged_lines(finding, show))
+        lines.append([])
     lines.append(summary_line(results, failures))
     lines.extend(checked_lines(results, show))
     return lines
@@ -190,14 +190,42 @@ def render_failure(failure: Any, *, cwd: str | None = None, show_source: bool = 
     return "".join("".join(text for text, _ in line) + "\n" for line in lines)
 
 
+def merged_lines(finding: MergedFinding, show: Callable[[str], str]) -> list[Line]:
+    """Under a merged finding: its elements (when a macro line made several, each with the
+    call site that made it) and, when its target was linted in several variants and it
+    occurs in all, the variants (the head line names the variants of one found in some)."""
+    diagnostic = finding.diagnostic
+    span = diagnostic.where.span if diagnostic.where else None
+    gutter = " " * (len(str(span.line)) if span and span.line else 1)
+    lines: list[Line] = []
+    if len(finding.elements) > 1:
+        sites: dict[str, str] = {}
+        for occurrence in finding.occurrences:
+            stack = occurrence.where.macro_stack if occurrence.where else ()
+            if occurrence.element not in sites:
+                sites[occurrence.element] = (f" (from {_location(stack[0], show, '')})"
+                                             if stack else "")
+        listed = ", ".join(f"{element}{sites.get(element, '')}"
+                           for element in finding.elements[:LISTED_ELEMENTS])
+        more = len(finding.elements) - LISTED_ELEMENTS
+        listed += f", ... {more} more" if more > 0 else ""
+        lines.append([(f"{gutter} = ", "blue"),
+                      (f"{len(finding.elements)} elements: {listed}", "")])
+    variants = finding.variants_text() if finding.in_all_variants else ""  # else: head line
+    if variants:
+        lines.append([(f"{gutter} = ", "blue"), (variants, "")])
+    return lines
+
+
 def summary_line(results: Sequence[LintResult], failures: Sequence[LintFailure] = ()) -> Line:
-    """"Found 3 errors, 1 warning in 2 files." / "All checks passed (2 files)."."""
+    """"Found 3 errors, 1 warning in 2 files." / "All checks passed (2 files)." (a finding
+    repeated over variants and elements counts once)."""
     totals = {level: 0 for level in sorted(Severity, reverse=True)}
     files = set()
-    for result in results:
-        for diagnostic in result.diagnostics:
-            totals[diagnostic.severity] += 1
-            files.add(diagnostic.where.span.path if diagnostic.where else diagnostic.target)
+    for finding in merge_findings(results):
+        diagnostic = finding.diagnostic
+        totals[diagnostic.severity] += 1
+        files.add(diagnostic.where.span.path if diagnostic.where else diagnostic.target)
     parts = [_plural(n, str(level)) for level, n in totals.items() if n]
     line: Line
     if parts:

@@ -3,7 +3,8 @@
 Gazebo loads a URDF through libsdformat's URDF->SDF conversion, which first lumps every link
 on a fixed joint into its parent (unless the joint's `<gazebo>` block asks to preserve it) and
 then drops every body without mass together with everything below it. PyBullet and MuJoCo
-fill gaps their own way. Pure checks of the model: no meshes, no Pinocchio.
+fill gaps their own way; yourdfpy (`robotdesc.to_yourdfpy`) refuses a few shapes and moves a
+few joints differently. Pure checks of the model: no meshes, no Pinocchio.
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ from dataclasses import dataclass
 from robotdesc.diagnostics import Finding, Severity
 from robotdesc.inertia.links import is_dynamics_model
 from robotdesc.model import tree
-from robotdesc.model.elements import Joint, Link, Robot
+from robotdesc.model.elements import Capsule, Collision, Joint, Link, Robot, Visual
 from robotdesc.rules.registry import RuleContext, rule
 
 FAMILY = "consumers"
@@ -341,3 +342,77 @@ def mujoco_ignores_mimic(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
             yield Finding(f"joint '{joint.name}' mimics '{joint.mimic.joint}': MuJoCo's URDF "
                           "import drops <mimic>; add an <equality><joint> in the MJCF",
                           joint.mimic.where or joint.where, f"joint:{joint.name}")
+
+
+#: Relative deviation of a prismatic axis' length from 1 that yourdfpy's motion shows.
+_AXIS_TOLERANCE = 1e-6
+
+
+@rule("C106", "yourdfpy-misreads", family=FAMILY, severity=Severity.WARNING, opt_in=True)
+def yourdfpy_misreads(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
+    """Finds what yourdfpy (the Python URDF loader behind `robotdesc.to_yourdfpy`) refuses or
+    reads differently from the URDF specification:
+
+    - a `<capsule>` geometry: the load fails ("Unknown tag: capsule");
+    - a planar or floating joint: its forward kinematics places the child at the joint's
+      origin whatever the configuration;
+    - a mimic joint whose leader is itself a mimic joint (or not a moving joint): the leader
+      is taken as 0, so the chain does not move;
+    - a prismatic joint whose axis is not of unit length: it moves by value x axis, not by
+      value along the axis as URDF readers (urdfdom, Pinocchio) do.
+
+    Off by default (a concern only for yourdfpy users): turn it on with `--select C106`.
+
+    Why is this bad?
+    Forward kinematics, scenes and collision checks computed with yourdfpy disagree with ROS,
+    Gazebo and Pinocchio without any error, or the model does not load at all.
+
+    Example
+    ```xml
+    <robot name="slider">
+      <link name="base"/><link name="carriage"/>
+      <joint name="slide" type="prismatic"><parent link="base"/><child link="carriage"/>
+        <axis xyz="0 0 2"/><limit lower="0" upper="0.5" effort="10" velocity="0.1"/></joint>
+    </robot>
+    ```
+
+    Use instead (a unit axis):
+    ```xml
+    <robot name="slider">
+      <link name="base"/><link name="carriage"/>
+      <joint name="slide" type="prismatic"><parent link="base"/><child link="carriage"/>
+        <axis xyz="0 0 1"/><limit lower="0" upper="0.5" effort="10" velocity="0.1"/></joint>
+    </robot>
+    ```
+    """
+    for link in robot.links:
+        groups: tuple[tuple[str, tuple[Visual | Collision, ...]], ...] = (
+            ("visual", link.visuals), ("collision", link.collisions))
+        for kind, shapes in groups:
+            for number, shape in enumerate(shapes):
+                if isinstance(shape.geometry, Capsule):
+                    yield Finding(f"link '{link.name}' has a <capsule> {kind}: yourdfpy refuses "
+                                  "the whole model (\"Unknown tag: capsule\")",
+                                  shape.geometry.where or shape.where or link.where,
+                                  f"link:{link.name}/{kind}[{number}]")
+    joints = {joint.name: joint for joint in robot.joints}
+    for joint in robot.joints:
+        if joint.type in ("planar", "floating"):
+            yield Finding(f"{joint.type} joint '{joint.name}': yourdfpy's forward kinematics "
+                          "keeps its child at the joint origin whatever the configuration",
+                          joint.where, f"joint:{joint.name}")
+        leader = joints.get(joint.mimic.joint) if joint.mimic is not None else None
+        if joint.mimic is not None and leader is not None and leader is not joint and (
+                leader.mimic is not None or leader.type not in tree.SCALAR_TYPES):
+            why = "itself a mimic joint" if leader.mimic is not None else \
+                f"a {leader.type} joint"
+            yield Finding(f"joint '{joint.name}' mimics '{leader.name}', {why}: yourdfpy "
+                          f"takes '{leader.name}' as 0, so '{joint.name}' does not follow it",
+                          joint.mimic.where or joint.where, f"joint:{joint.name}")
+        if joint.type == "prismatic" and joint.axis is not None:
+            length = sum(c * c for c in joint.axis) ** 0.5
+            if length > 0 and abs(length - 1.0) > _AXIS_TOLERANCE:
+                yield Finding(f"prismatic joint '{joint.name}' has an axis of length "
+                              f"{length:.6g}: yourdfpy moves it {length:.6g} times as far as "
+                              "URDF readers do", joint.axis_where or joint.where,
+                              f"joint:{joint.name}")

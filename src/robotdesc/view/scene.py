@@ -9,6 +9,7 @@ once. A mesh that cannot be shown is a `SceneProblem`, never an exception. Units
 
 from __future__ import annotations
 
+import functools
 import logging
 import os
 from collections.abc import Mapping, Sequence
@@ -229,15 +230,15 @@ class _GeometryStore:
 
     def _make(self, geometry: Geometry, key: _Key) -> int | str:
         if isinstance(geometry, MeshRef):
-            from robotdesc.mesh.load import load_mesh
-
             try:
-                loaded = load_mesh(key[1], geometry.scale)
+                status = os.stat(key[1])
+                vertices, faces, source_faces = _display_mesh(
+                    key[1], status.st_size, status.st_mtime_ns, tuple(geometry.scale),
+                    self._max_faces)
             except MeshError as error:
                 return f"{geometry.filename}: {error.detail}"
-            vertices, faces = weld(loaded.triangles)
-            source_faces = len(loaded.triangles)
-            vertices, faces = reduce_faces(vertices, faces, self._max_faces)
+            except OSError as error:
+                return f"{geometry.filename}: {error.strerror or error}"
             label = os.path.basename(key[1])
             primitive = False
         else:
@@ -254,6 +255,23 @@ class _GeometryStore:
                                              np.asarray(faces, dtype=np.uint32),
                                              source_faces, primitive))
         return len(self.geometries) - 1
+
+
+@functools.lru_cache(maxsize=256)
+def _display_mesh(path: str, size: int, mtime_ns: int, scale: tuple[float, ...],
+                  max_faces: int) -> tuple[np.ndarray, np.ndarray, int]:
+    """A mesh file welded and reduced for display: (vertices, faces, faces of the file),
+    kept per file state (`size` and `mtime_ns` key the cache only), so that a second view or
+    report of the same robot does not simplify its meshes again."""
+    from robotdesc.mesh.load import load_mesh
+
+    loaded = load_mesh(path, scale)
+    vertices, faces = weld(loaded.triangles)
+    vertices, faces = reduce_faces(vertices, faces, max_faces)
+    vertices, faces = np.asarray(vertices), np.asarray(faces)
+    vertices.setflags(write=False)
+    faces.setflags(write=False)
+    return vertices, faces, len(loaded.triangles)
 
 
 def _primitive_label(geometry: Box | Cylinder | Sphere | Capsule) -> str:

@@ -7,7 +7,6 @@ iframe holding the self-contained page), `.save(path)` writes the page.
 
 from __future__ import annotations
 
-import html
 import os
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -22,6 +21,7 @@ from robotdesc.model.parse import parse_urdf
 from robotdesc.output import write_output
 from robotdesc.view.findings import findings_by_link
 from robotdesc.view.html import view_page
+from robotdesc.view.preview import preview_iframe
 
 SHOW_OPTIONS = ("visual", "collision", "inertia", "findings")
 
@@ -59,10 +59,10 @@ class View:
                 f"{len(doc['instances'])} shapes, {flagged} links with findings>")
 
     def _repr_html_(self) -> str:
-        """An iframe whose `srcdoc` is the page (scripts run in the frame only)."""
-        return (f'<iframe srcdoc="{html.escape(self.html(), quote=True)}" '
-                f'style="width:100%;height:{html.escape(self.height)};border:0" '
-                'sandbox="allow-scripts"></iframe>')
+        """An iframe (scripts run in the frame only) holding a preview of the page: meshes
+        reduced, the page compressed (see robotdesc.view.preview); `.save()` writes the
+        full page."""
+        return preview_iframe(self.document, self.height)
 
 
 def show(target: Any, joint_values: Mapping[str, float] | None = None, *,

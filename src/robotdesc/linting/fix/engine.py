@@ -65,6 +65,12 @@ class FixPlan:
     def fixed(self) -> tuple[FixOutcome, ...]:
         return tuple(o for o in self.outcomes if o.status == FIXED)
 
+    @property
+    def problems_fixed(self) -> int:
+        """How many problems the plan fixes: findings whose edits are the same (one macro
+        line fixed for every element and variant it made) count once."""
+        return len({frozenset((e.path, e.start, e.end) for e in o.edits) for o in self.fixed})
+
 
 def package_root(target: str) -> str:
     """The folder fixes may write in: the target's ROS package, else the target's folder."""

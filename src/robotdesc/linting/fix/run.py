@@ -32,7 +32,8 @@ class FixRun:
     Attributes:
         diff: the unified diff of the first pass (--diff prints it).
         outcomes: the fixable findings of the last pass and their fate.
-        fixed: how many findings were fixed over all passes.
+        fixed: how many problems were fixed over all passes (findings fixed by the same
+            edits, one macro line over its elements and variants, count once).
         written: the files written; refused: files not written, changed since read.
     """
 
@@ -100,9 +101,9 @@ def fix_targets(targets: Sequence[LintTarget], *, args: Mapping[str, str] | None
         done, changed = write_fixes(plan)
         written += [p for p in done if p not in written]
         refused += changed
-        fixed += len(plan.fixed)
-        log.info("fix pass %d: %d finding(s) fixed in %d file(s)", number + 1,
-                 len(plan.fixed), len(done))
+        fixed += plan.problems_fixed
+        log.info("fix pass %d: %d problem(s) fixed in %d file(s)", number + 1,
+                 plan.problems_fixed, len(done))
         if changed:
             break
     return FixRun(first_diff or "", plan.outcomes, fixed, tuple(written), tuple(refused))
