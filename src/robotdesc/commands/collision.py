@@ -14,11 +14,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import signal
 import sys
-import threading
-from collections.abc import Iterator
-from contextlib import contextmanager
 from dataclasses import replace
 
 from robotdesc.collision.limits import ENGINE_LIMITS
@@ -117,28 +113,8 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser], *,
 
 
 def run(ns: argparse.Namespace) -> int:
-    """The handler; SIGTERM stops the worker processes and ends quietly (exit 143)."""
-    with _terminated_quietly():
-        return _run(ns)
-
-
-@contextmanager
-def _terminated_quietly() -> Iterator[None]:
-    """For the duration: SIGTERM raises SystemExit(143) in the main thread, so that the
-    workers are stopped by their `finally` (not left to find a closed pipe and print a
-    traceback) and the run ends with one line on stderr."""
-    def terminate(signum: int, frame: object) -> None:
-        sys.stderr.write("robotdesc: terminated\n")
-        raise SystemExit(128 + signum)
-
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    previous = signal.signal(signal.SIGTERM, terminate)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, previous)
+    """The handler (SIGTERM while links are made: see `collision.worker.run_tasks`)."""
+    return _run(ns)
 
 
 def _run(ns: argparse.Namespace) -> int:
