@@ -1,22 +1,20 @@
 """`robotdesc rules` (the table of every rule) and `robotdesc rule CODE` (one rule's
 documentation, options and defaults).
 
-Exit codes: 0 printed, 2 an unknown rule.
+Exit codes: 0 printed, 2 an unknown rule. Both read the generated rule index
+(`robotdesc.rules.index`), so that they start without importing every rule module; the
+registry (and the error classes) only when the index does not know the rule.
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
-from robotdesc.commands.inputs import EXIT_OK
-from robotdesc.errors import UsageError
+from robotdesc.commands.exit_codes import EXIT_OK
 from robotdesc.report.table import render_table
-from robotdesc.rules.fixes import FIXABLE
-
-if TYPE_CHECKING:
-    from robotdesc.rules.registry import Rule
+from robotdesc.rules.index import read_index
 
 
 def register(subparsers: Any, *, common: argparse.ArgumentParser,
@@ -34,10 +32,14 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
 
 
 def run_rules(ns: argparse.Namespace) -> int:
-    """The handler of `rules`: one row per rule."""
-    from robotdesc.rules.catalog import all_rules
+    """The handler of `rules`: one row per rule (from the rule index when it is current)."""
+    index = read_index()
+    if index is not None:
+        rows = list(index.rows)
+    else:  # sources changed since the index was made: ask the registry (slower)
+        from robotdesc.rules.docs import rule_rows
 
-    rows = [(r.code, r.name, r.family, str(r.severity), r.summary) for r in all_rules()]
+        rows = rule_rows()
     header = ("CODE", "NAME", "FAMILY", "SEVERITY", "SUMMARY")
     sys.stdout.write(render_table(header, rows, max_cell=30))
     return EXIT_OK
@@ -49,36 +51,16 @@ def run_rule(ns: argparse.Namespace) -> int:
     Raises:
         UsageError: no rule has this code or name.
     """
-    from robotdesc.rules.catalog import get_rule
+    index = read_index()
+    text = None if index is None else index.find(ns.code)
+    if text is None:  # unknown, or the index is out of date: ask the registry (slower)
+        from robotdesc.errors import UsageError
+        from robotdesc.rules.catalog import get_rule
+        from robotdesc.rules.docs import rule_help
 
-    found = get_rule(ns.code)
-    if found is None:
-        raise UsageError(f"unknown rule '{ns.code}' (see `robotdesc rules`)")
-    sys.stdout.write(rule_help(found))
+        found = get_rule(ns.code)
+        if found is None:
+            raise UsageError(f"unknown rule '{ns.code}' (see `robotdesc rules`)")
+        text = rule_help(found)
+    sys.stdout.write(text)
     return EXIT_OK
-
-
-def rule_help(rule: Rule) -> str:
-    """A rule's documentation as `robotdesc rule CODE` prints it."""
-    lines = [f"{rule.code} {rule.name}", "",
-             f"Family: {rule.family}", f"Default severity: {rule.severity}"]
-    if rule.needs:
-        lines.append(f"Needs: {', '.join(sorted(rule.needs))}")
-
-    if rule.code in FIXABLE:
-        applicability = FIXABLE[rule.code].value
-        lines.append(f"Fix: {applicability} (applied by `robotdesc lint --fix`"
-                     + (" --unsafe-fixes)" if applicability == "unsafe" else ")"))
-    lines += ["", rule.doc or rule.summary, ""]
-    fields = rule.option_fields()
-    if fields:
-        defaults = rule.default_options()
-        lines.append(f"Options ([tool.robotdesc.rules.{rule.code}]):")
-        for field in fields:
-            kind = field.type if isinstance(field.type, str) else getattr(
-                field.type, "__name__", str(field.type))
-            lines.append(f"  {field.name} ({kind}) = {getattr(defaults, field.name)!r}")
-        lines.append("")
-    else:
-        lines += ["Options: none", ""]
-    return "\n".join(lines)
