@@ -1,5 +1,8 @@
 """Lint many targets, in this process or across worker processes (`lint --jobs N`).
 
+A target whose inputs did not change since a run with the same settings is a read of the
+whole-result cache (`robotdesc.linting.result_cache`): it is neither expanded nor linted.
+
 Workers share robotdesc's on-disk caches (expansions and mesh summaries, both keyed by
 content and written atomically), so a mesh used by several targets is summarized once per
 cache, not once per worker. Results come back in the order of the targets, whatever the
@@ -12,13 +15,15 @@ import dataclasses
 import logging
 import os
 import threading
+import time
 import traceback
 from dataclasses import dataclass
 from typing import Any, Mapping, Sequence
 
 from robotdesc.errors import InputError, OptionError, WorkerCrashed
 from robotdesc.linting.driver import lint_file
-from robotdesc.linting.inputs import run_inputs
+from robotdesc.linting import result_cache
+from robotdesc.linting.inputs import meshes_resolve, run_inputs
 from robotdesc.linting.result import LintFailure, LintResult
 from robotdesc.linting.targets import LintTarget
 
@@ -66,29 +71,58 @@ def lint_targets(targets: Sequence[LintTarget], *, args: Mapping[str, str] | Non
     Raises:
         WorkerCrashed / RuleCrashed: a bug while linting a target (exit code 3).
     """
-    jobs = min(effective_jobs(jobs), max(1, len(targets)))
-    work = [(target, dict(args or {}), expand_options, select, tuple(ignore))
-            for target in targets]
-    if jobs == 1:
+    effective_jobs(jobs)
+    result_cache.new_run()
+    found: dict[int, Outcome] = {}
+    for number, target in enumerate(targets):
+        hit = cached_result(target, args or {}, expand_options, select, ignore)
+        if hit is not None:
+            found[number] = hit
+    missing = [number for number in range(len(targets)) if number not in found]
+    work = [(targets[number], dict(args or {}), expand_options, select, tuple(ignore))
+            for number in missing]
+    jobs = min(effective_jobs(jobs), max(1, len(work)))
+    if not work:
+        outcomes: list[Outcome | _Crash] = []
+    elif jobs == 1:
         outcomes = [_lint_one(*item, keep_exceptions=True) for item in work]
     else:
         from concurrent.futures import ProcessPoolExecutor
 
-        log.info("linting %d targets in %d worker processes", len(targets), jobs)
+        log.info("linting %d targets in %d worker processes", len(work), jobs)
         with ProcessPoolExecutor(max_workers=jobs, mp_context=_context()) as pool:
             outcomes = list(pool.map(_lint_one, *zip(*work)))
-    results: list[Outcome] = []
-    for outcome in outcomes:
+    for number, outcome in zip(missing, outcomes):
         if isinstance(outcome, _Crash):
             raise WorkerCrashed(outcome.target, outcome.summary, outcome.trace)
-        results.append(outcome)
-    return results
+        found[number] = outcome
+    return [found[number] for number in range(len(targets))]
+
+
+def _key(target: LintTarget, args: Mapping[str, str], expand_options: Any,
+         select: Sequence[str] | None, ignore: Sequence[str]) -> result_cache.CacheKey | None:
+    """The whole-result cache key of one target (its own settings, as `_lint_one` lints)."""
+    return result_cache.result_key(
+        target.path, config=target.config, args={**dict(target.args), **dict(args)},
+        variant=target.variant, select=select, ignore=tuple(ignore),
+        expand_options=expand_options)
+
+
+def cached_result(target: LintTarget, args: Mapping[str, str], expand_options: Any,
+                  select: Sequence[str] | None, ignore: Sequence[str]) -> LintResult | None:
+    """The stored result of `target` when none of its inputs changed (else None)."""
+    hit = result_cache.load(_key(target, args, expand_options, select, ignore), target.path)
+    if hit is None:
+        return None
+    log.info("%s: unchanged since the last lint (result cache)", target.name())
+    return dataclasses.replace(hit, variant=target.variant)
 
 
 def _lint_one(target: LintTarget, args: dict[str, str], expand_options: Any, select: Any,
               ignore: tuple[str, ...], keep_exceptions: bool = False) -> Outcome | _Crash:
     """Lint one target; input errors become failures, bugs become `_Crash` in a worker."""
     log.info("linting %s", target.name())
+    started_ns = time.time_ns()
     try:
         result = lint_file(target.path, target.config, args={**dict(target.args), **args},
                            expand_options=expand_options, select=select, ignore=ignore)
@@ -98,13 +132,20 @@ def _lint_one(target: LintTarget, args: dict[str, str], expand_options: Any, sel
         if keep_exceptions:
             raise
         return _Crash(target.name(), f"{type(exc).__name__}: {exc}", traceback.format_exc())
+    package_paths = tuple(getattr(expand_options, "package_paths", ()))
+    package_map = tuple(getattr(expand_options, "package_map", ())) \
+        + tuple(target.config.packages)
     inputs = run_inputs(result.target, config_path=result.config_path,
                         expanded=result.expanded, robot=result.robot,
-                        package_paths=getattr(expand_options, "package_paths", ()),
-                        package_map=tuple(getattr(expand_options, "package_map", ()))
-                        + tuple(target.config.packages))
-    return dataclasses.replace(result, expanded=None, robot=None, variant=target.variant,
-                               inputs=inputs)
+                        package_paths=package_paths, package_map=package_map)
+    expanded, robot = result.expanded, result.robot
+    result = dataclasses.replace(result, expanded=None, robot=None, variant=target.variant,
+                                 inputs=inputs)
+    result_cache.store(_key(target, args, expand_options, select, ignore), result,
+                       started_ns=started_ns,
+                       env_names=[used.name for used in getattr(expanded, "env_defaults", ())],
+                       complete=meshes_resolve(robot, package_paths, package_map))
+    return result
 
 
 def _context() -> Any:
