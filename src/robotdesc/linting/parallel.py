@@ -121,30 +121,42 @@ def cached_result(target: LintTarget, args: Mapping[str, str], expand_options: A
 def _lint_one(target: LintTarget, args: dict[str, str], expand_options: Any, select: Any,
               ignore: tuple[str, ...], keep_exceptions: bool = False) -> Outcome | _Crash:
     """Lint one target; input errors become failures, bugs become `_Crash` in a worker."""
-    log.info("linting %s", target.name())
-    started_ns = time.time_ns()
     try:
-        result = lint_file(target.path, target.config, args={**dict(target.args), **args},
-                           expand_options=expand_options, select=select, ignore=ignore)
+        result = lint_target(target, args, expand_options, select, ignore)
     except InputError as exc:
         return LintFailure(target.path, exc, target.variant)
     except Exception as exc:  # a bug: let it through here, carry it as text from a worker
         if keep_exceptions:
             raise
         return _Crash(target.name(), f"{type(exc).__name__}: {exc}", traceback.format_exc())
+    return dataclasses.replace(result, expanded=None, robot=None)
+
+
+def lint_target(target: LintTarget, args: Mapping[str, str], expand_options: Any,
+                select: Sequence[str] | None, ignore: Sequence[str]) -> LintResult:
+    """Lint one target (not asking the result cache) and store its result there; the result
+    keeps its expansion and model, and knows its `inputs`.
+
+    Raises:
+        InputError: the target could not be expanded or parsed.
+    """
+    log.info("linting %s", target.name())
+    started_ns = time.time_ns()
+    result = lint_file(target.path, target.config, args={**dict(target.args), **args},
+                       expand_options=expand_options, select=select, ignore=ignore)
     package_paths = tuple(getattr(expand_options, "package_paths", ()))
     package_map = tuple(getattr(expand_options, "package_map", ())) \
         + tuple(target.config.packages)
     inputs = run_inputs(result.target, config_path=result.config_path,
                         expanded=result.expanded, robot=result.robot,
                         package_paths=package_paths, package_map=package_map)
-    expanded, robot = result.expanded, result.robot
-    result = dataclasses.replace(result, expanded=None, robot=None, variant=target.variant,
-                                 inputs=inputs)
-    result_cache.store(_key(target, args, expand_options, select, ignore), result,
+    result = dataclasses.replace(result, variant=target.variant, inputs=inputs)
+    result_cache.store(_key(target, args, expand_options, select, tuple(ignore)),
+                       dataclasses.replace(result, expanded=None, robot=None),
                        started_ns=started_ns,
-                       env_names=[used.name for used in getattr(expanded, "env_defaults", ())],
-                       complete=meshes_resolve(robot, package_paths, package_map))
+                       env_names=[used.name for used in
+                                  getattr(result.expanded, "env_defaults", ())],
+                       complete=meshes_resolve(result.robot, package_paths, package_map))
     return result
 
 

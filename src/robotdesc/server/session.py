@@ -13,10 +13,10 @@ from robotdesc.diagnostics import Diagnostic
 from robotdesc.errors import InputError
 from robotdesc.expansion import ExpandOptions
 from robotdesc.expansion.packages import enclosing_package
-from robotdesc.linting.driver import lint_file
 from robotdesc.linting.fix.engine import FIXED, FixOutcome, plan_fixes
 from robotdesc.linting.fix.run import MeshCase
 from robotdesc.linting.matrix import Variant
+from robotdesc.linting.parallel import cached_result, lint_target
 from robotdesc.linting.targets import LintTarget, discover_targets
 from robotdesc.rules.fixes import Applicability
 
@@ -82,7 +82,9 @@ class Session:
 
     def lint(self, path: str) -> dict[str, list[Diagnostic]]:
         """Lint the descriptions `path` belongs to; findings per file (every file that had
-        or has one in them, so that the caller can clear stale ones)."""
+        or has one in them, and `path` itself, so that the caller can clear stale ones and
+        say that a clean file is clean). A description none of whose inputs changed (a
+        variant that does not include the saved file) is read from the result cache."""
         path = os.path.abspath(path)
         touched: set[str] = {path}
         for target in self.targets_for(path):
@@ -91,8 +93,8 @@ class Session:
             if old is not None:
                 touched.update(_finding_paths(old.diagnostics))
             try:
-                result = lint_file(target.path, target.config, args=dict(target.args),
-                                   expand_options=self.expand_options)
+                result = cached_result(target, {}, self._options(), None, ()) \
+                    or lint_target(target, {}, self._options(), None, ())
             except InputError as error:
                 self.failures[key] = error
                 self.results.pop(key, None)
@@ -146,22 +148,27 @@ class Session:
     def _outcomes(self, unsafe: bool, keys: Iterable[TargetKey] | None = None
                   ) -> list[FixOutcome]:
         chosen = [k for k in self.results if keys is None or k in keys]
+        for key in chosen:  # a result read from the cache has no expansion: lint it now
+            if self.results[key].expanded is None:
+                self.results[key] = lint_target(self.targets[key], {}, self._options(),
+                                                None, ())
         results = [self.results[k] for k in chosen]
         helpers = {self.results[k].target: MeshCase(self.results[k], self.targets[k].config,
                                                     self._options()) for k in chosen}
         return list(plan_fixes(results, unsafe=unsafe, helpers=helpers).outcomes)
 
     def _options(self) -> Any:
-        return self.expand_options or ExpandOptions()
+        return self.expand_options if self.expand_options is not None else ExpandOptions()
 
 
 def _sources(result: LintResult) -> set[str]:
+    """The files a result depends on, as given and as real paths."""
     expanded = result.expanded
-    files = {result.target}
+    files = {result.target, *result.files_read}
     if expanded is not None:
         files.update(expanded.files)
         files.update(expanded.files_read)
-    return files
+    return files | {os.path.realpath(f) for f in files}
 
 
 def _finding_paths(diagnostics: Iterable[Diagnostic]) -> set[str]:
