@@ -18,9 +18,11 @@ import threading
 import time
 import traceback
 from dataclasses import dataclass
-from typing import Any, Mapping, Sequence
+from typing import Any, Callable, Mapping, Sequence
 
-from robotdesc.errors import InputError, OptionError, WorkerCrashed
+from robotdesc.collision.cluster import run_tasks_on_cluster
+from robotdesc.collision.worker import TaskFailure
+from robotdesc.errors import InputError, OptionError, UsageError, WorkerCrashed
 from robotdesc.linting.driver import lint_file
 from robotdesc.linting import result_cache
 from robotdesc.linting.inputs import meshes_resolve, run_inputs
@@ -54,7 +56,8 @@ def effective_jobs(jobs: int) -> int:
 
 def lint_targets(targets: Sequence[LintTarget], *, args: Mapping[str, str] | None = None,
                  expand_options: Any = None, select: Sequence[str] | None = None,
-                 ignore: Sequence[str] = (), jobs: int = 1) -> list[Outcome]:
+                 ignore: Sequence[str] = (), jobs: int = 1, scheduler: str | None = None,
+                 on_done: Callable[[int], None] | None = None) -> list[Outcome]:
     """Lint every target; one `LintResult` or `LintFailure` per target, in target order.
 
     The results carry diagnostics only (`expanded` and `robot` are dropped so that they
@@ -66,10 +69,17 @@ def lint_targets(targets: Sequence[LintTarget], *, args: Mapping[str, str] | Non
         expand_options: `robotdesc.expansion.ExpandOptions` for every target.
         select: rule selectors that replace each config's `select`.
         ignore: rule selectors added to each config's `ignore`.
-        jobs: worker processes (1: lint in this process; 0: one per CPU).
+        jobs: worker processes (1: lint in this process; 0: one per CPU); with a scheduler,
+            the worker processes of `local`.
+        scheduler: lint on a Dask cluster: its address (`tcp://host:8786`), or "local" for
+            a cluster of `jobs` worker processes on this machine started for the run. The
+            targets' files must be at the same paths on every Dask worker (a shared file
+            system); robotdesc[dask] must be installed there too.
+        on_done: called with the number of targets done so far, as each one ends.
 
     Raises:
         WorkerCrashed / RuleCrashed: a bug while linting a target (exit code 3).
+        UsageError: a scheduler that does not answer, or `distributed` is not installed.
     """
     effective_jobs(jobs)
     result_cache.new_run()
@@ -81,22 +91,74 @@ def lint_targets(targets: Sequence[LintTarget], *, args: Mapping[str, str] | Non
     missing = [number for number in range(len(targets)) if number not in found]
     work = [(targets[number], dict(args or {}), expand_options, select, tuple(ignore))
             for number in missing]
-    jobs = min(effective_jobs(jobs), max(1, len(work)))
+    done = len(found)
+    if on_done is not None and done:
+        on_done(done)
+
+    def one_more(*_: object) -> None:
+        nonlocal done
+        done += 1
+        if on_done is not None:
+            on_done(done)
+
+    local_jobs = min(effective_jobs(jobs), max(1, len(work)))
+    outcomes: list[Outcome | _Crash | TaskFailure]
     if not work:
-        outcomes: list[Outcome | _Crash] = []
-    elif jobs == 1:
-        outcomes = [_lint_one(*item, keep_exceptions=True) for item in work]
+        outcomes = []
+    elif scheduler is not None:
+        outcomes = _on_cluster(work, scheduler, effective_jobs(jobs), one_more)
+    elif local_jobs == 1:
+        outcomes = []
+        for item in work:
+            outcomes.append(_lint_one(*item, keep_exceptions=True))
+            one_more()
     else:
         from concurrent.futures import ProcessPoolExecutor
 
-        log.info("linting %d targets in %d worker processes", len(work), jobs)
-        with ProcessPoolExecutor(max_workers=jobs, mp_context=_context()) as pool:
-            outcomes = list(pool.map(_lint_one, *zip(*work)))
+        log.info("linting %d targets in %d worker processes", len(work), local_jobs)
+        with ProcessPoolExecutor(max_workers=local_jobs, mp_context=_context()) as pool:
+            outcomes = []
+            for outcome in pool.map(_lint_one, *zip(*work)):
+                outcomes.append(outcome)
+                one_more()
     for number, outcome in zip(missing, outcomes):
+        if isinstance(outcome, TaskFailure):
+            raise WorkerCrashed(targets[number].name(), f"on the Dask cluster: "
+                                f"{outcome.kind}: {outcome.message}", "")
         if isinstance(outcome, _Crash):
             raise WorkerCrashed(outcome.target, outcome.summary, outcome.trace)
         found[number] = outcome
     return [found[number] for number in range(len(targets))]
+
+
+#: Wall-clock limit of one target's lint on a Dask worker (s); time queued does not count.
+CLUSTER_TASK_TIMEOUT_S = 3600.0
+
+
+def _on_cluster(work: list[tuple[Any, ...]], scheduler: str, jobs: int,
+                on_done: Callable[..., None]) -> list[Outcome | _Crash | TaskFailure]:
+    """Lint each work item as one task on the Dask cluster at `scheduler` ("local": one
+    started here with `jobs` worker processes), with the collision commands' helper (each
+    task in its own process on the worker, a crash a `TaskFailure`)."""
+    if scheduler != "local":
+        log.info("linting %d targets on the Dask cluster at %s", len(work), scheduler)
+        return run_tasks_on_cluster(_lint_task, work, scheduler=scheduler,
+                                    timeout_s=CLUSTER_TASK_TIMEOUT_S, on_done=on_done)
+    try:
+        import distributed
+    except ImportError:
+        raise UsageError("--scheduler local needs the optional extra: "
+                         'pip install ".[dask]"') from None
+    log.info("linting %d targets on a local Dask cluster of %d processes", len(work), jobs)
+    with distributed.LocalCluster(n_workers=jobs, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
+        return run_tasks_on_cluster(_lint_task, work, scheduler=cluster.scheduler_address,
+                                    timeout_s=CLUSTER_TASK_TIMEOUT_S, on_done=on_done)
+
+
+def _lint_task(item: tuple[Any, ...]) -> Outcome | _Crash:
+    """One target's lint as a cluster task (a module-level function: pickled by name)."""
+    return _lint_one(*item)
 
 
 def _key(target: LintTarget, args: Mapping[str, str], expand_options: Any,
