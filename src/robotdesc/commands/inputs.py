@@ -13,13 +13,11 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from robotdesc.commands.exit_codes import (  # noqa: F401 (the commands import them from here)
-    EXIT_FINDINGS,
-    EXIT_INPUT,
-    EXIT_INTERNAL,
-    EXIT_INTERRUPTED,
-    EXIT_OK,
-)
+from robotdesc.commands.exit_codes import EXIT_FINDINGS as EXIT_FINDINGS  # re-exported
+from robotdesc.commands.exit_codes import EXIT_INPUT as EXIT_INPUT
+from robotdesc.commands.exit_codes import EXIT_INTERNAL as EXIT_INTERNAL
+from robotdesc.commands.exit_codes import EXIT_INTERRUPTED as EXIT_INTERRUPTED
+from robotdesc.commands.exit_codes import EXIT_OK as EXIT_OK
 from robotdesc.config import discover_config, load_config
 from robotdesc.errors import UsageError
 from robotdesc.expansion import ExpandOptions

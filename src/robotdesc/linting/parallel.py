@@ -118,8 +118,8 @@ def lint_targets(targets: Sequence[LintTarget], *, args: Mapping[str, str] | Non
         log.info("linting %d targets in %d worker processes", len(work), local_jobs)
         with ProcessPoolExecutor(max_workers=local_jobs, mp_context=_context()) as pool:
             outcomes = []
-            for outcome in pool.map(_lint_one, *zip(*work)):
-                outcomes.append(outcome)
+            for finished in pool.map(_lint_one, *zip(*work)):
+                outcomes.append(finished)
                 one_more()
     for number, outcome in zip(missing, outcomes):
         if isinstance(outcome, TaskFailure):
@@ -150,8 +150,9 @@ def _on_cluster(work: list[tuple[Any, ...]], scheduler: str, jobs: int,
         raise UsageError("--scheduler local needs the optional extra: "
                          'pip install ".[dask]"') from None
     log.info("linting %d targets on a local Dask cluster of %d processes", len(work), jobs)
-    with distributed.LocalCluster(n_workers=jobs, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as cluster:
+    with distributed.LocalCluster(  # type: ignore[no-untyped-call]
+            n_workers=jobs, threads_per_worker=1, processes=True,
+            dashboard_address=None) as cluster:
         return run_tasks_on_cluster(_lint_task, work, scheduler=cluster.scheduler_address,
                                     timeout_s=CLUSTER_TASK_TIMEOUT_S, on_done=on_done)
 
