@@ -34,6 +34,7 @@ LAZY_ALLOWED = frozenset({
     "resource", "fcntl", "termios", "ctypes", "multiprocessing", "concurrent", "subprocess",
     "traceback", "pymeshlab", "PIL", "jsonschema", "cProfile", "pstats", "IPython",
     "tomllib", "tomli",  # whichever the Python version has
+    "asyncio",  # 14 ms of imports: only the Dask paths need it (a warm lint must not pay)
 })
 #: The public API imports each part of robotdesc on first use, so that `import robotdesc`
 #: (every notebook's first line, and every submodule's parent) stays cheap.

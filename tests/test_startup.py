@@ -38,9 +38,10 @@ sys.stderr.write(json.dumps({"code": code, "modules": sorted(sys.modules)}))
 """
 
 
-def _imported(*words: str) -> set[str]:
+def _imported(*words: str, env: dict[str, str] | None = None) -> set[str]:
     done = subprocess.run([sys.executable, "-c", PROBE, *words], capture_output=True,
-                          text=True, env=dict(os.environ, PYTHONPATH=str(SRC)), check=False)
+                          text=True, env=dict(env or os.environ, PYTHONPATH=str(SRC)),
+                          check=False)
     report = json.loads(done.stderr.strip().splitlines()[-1])
     assert report["code"] == 0, done.stderr
     return set(report["modules"])
@@ -80,3 +81,20 @@ def test_an_index_of_other_sources_is_not_used(tmp_path: Path) -> None:
     for junk in ("[]", "{", json.dumps({"sources": None})):
         stale.write_text(junk)
         assert read_index(str(stale)) is None
+
+
+#: Not imported by a lint answered from the result cache (nothing is expanded or checked).
+NOT_FOR_A_WARM_LINT = ("numpy", "trimesh", "lxml", "xacro", "rich", "asyncio",
+                       "multiprocessing", "robotdesc.rules.catalog", "robotdesc.model.parse",
+                       "robotdesc.expansion.runner")
+
+
+def test_a_warm_lint_reads_the_result_cache_and_imports_no_checker(tmp_path: Path) -> None:
+    robot = tmp_path / "r.urdf"
+    robot.write_text("<robot name='r'><link name='a'><inertial><mass value='1'/><inertia "
+                     "ixx='1' ixy='0' ixz='0' iyy='1' iyz='0' izz='1'/></inertial></link>"
+                     "</robot>")
+    os.utime(robot, ns=(1_600_000_000 * 10**9,) * 2)
+    env = dict(os.environ, ROBOTDESC_CACHE_DIR=str(tmp_path / "cache"))
+    _imported("lint", "-q", str(robot), env=env)  # cold: fills the cache
+    assert _offending(_imported("lint", "-q", str(robot), env=env), NOT_FOR_A_WARM_LINT) == []

@@ -20,8 +20,6 @@ import traceback
 from dataclasses import dataclass
 from typing import Any, Callable, Mapping, Sequence
 
-from robotdesc.collision.cluster import run_tasks_on_cluster
-from robotdesc.collision.worker import TaskFailure
 from robotdesc.errors import InputError, OptionError, UsageError, WorkerCrashed
 from robotdesc.linting.driver import lint_file
 from robotdesc.linting import result_cache
@@ -102,7 +100,7 @@ def lint_targets(targets: Sequence[LintTarget], *, args: Mapping[str, str] | Non
             on_done(done)
 
     local_jobs = min(effective_jobs(jobs), max(1, len(work)))
-    outcomes: list[Outcome | _Crash | TaskFailure]
+    outcomes: list[Outcome | _Crash]
     if not work:
         outcomes = []
     elif scheduler is not None:
@@ -122,9 +120,6 @@ def lint_targets(targets: Sequence[LintTarget], *, args: Mapping[str, str] | Non
                 outcomes.append(finished)
                 one_more()
     for number, outcome in zip(missing, outcomes):
-        if isinstance(outcome, TaskFailure):
-            raise WorkerCrashed(targets[number].name(), f"on the Dask cluster: "
-                                f"{outcome.kind}: {outcome.message}", "")
         if isinstance(outcome, _Crash):
             raise WorkerCrashed(outcome.target, outcome.summary, outcome.trace)
         found[number] = outcome
@@ -136,14 +131,24 @@ CLUSTER_TASK_TIMEOUT_S = 3600.0
 
 
 def _on_cluster(work: list[tuple[Any, ...]], scheduler: str, jobs: int,
-                on_done: Callable[..., None]) -> list[Outcome | _Crash | TaskFailure]:
+                on_done: Callable[..., None]) -> list[Outcome | _Crash]:
     """Lint each work item as one task on the Dask cluster at `scheduler` ("local": one
     started here with `jobs` worker processes), with the collision commands' helper (each
-    task in its own process on the worker, a crash a `TaskFailure`)."""
+    task in its own process on the worker; a task Dask could not run is a `_Crash`)."""
+    # here, not at the top: the Dask client imports asyncio and the task runner
+    # multiprocessing, which a warm lint must not pay for
+    from robotdesc.collision.cluster import run_tasks_on_cluster
+    from robotdesc.collision.worker import TaskFailure
+
+    def crashes_named(outcomes: list[Any]) -> list[Outcome | _Crash]:
+        return [_Crash(item[0].name(), f"on the Dask cluster: {o.kind}: {o.message}", "")
+                if isinstance(o, TaskFailure) else o for item, o in zip(work, outcomes)]
+
     if scheduler != "local":
         log.info("linting %d targets on the Dask cluster at %s", len(work), scheduler)
-        return run_tasks_on_cluster(_lint_task, work, scheduler=scheduler,
-                                    timeout_s=CLUSTER_TASK_TIMEOUT_S, on_done=on_done)
+        return crashes_named(run_tasks_on_cluster(
+            _lint_task, work, scheduler=scheduler, timeout_s=CLUSTER_TASK_TIMEOUT_S,
+            on_done=on_done))
     try:
         import distributed
     except ImportError:
@@ -153,8 +158,9 @@ def _on_cluster(work: list[tuple[Any, ...]], scheduler: str, jobs: int,
     with distributed.LocalCluster(  # type: ignore[no-untyped-call]
             n_workers=jobs, threads_per_worker=1, processes=True,
             dashboard_address=None) as cluster:
-        return run_tasks_on_cluster(_lint_task, work, scheduler=cluster.scheduler_address,
-                                    timeout_s=CLUSTER_TASK_TIMEOUT_S, on_done=on_done)
+        return crashes_named(run_tasks_on_cluster(
+            _lint_task, work, scheduler=cluster.scheduler_address,
+            timeout_s=CLUSTER_TASK_TIMEOUT_S, on_done=on_done))
 
 
 def _lint_task(item: tuple[Any, ...]) -> Outcome | _Crash:

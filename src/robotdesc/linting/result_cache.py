@@ -49,7 +49,7 @@ from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.digest import file_digest
 from robotdesc.expansion import DEFAULT_ENV_ALLOWLIST
 from robotdesc.linting.result import LintResult
-from robotdesc.output import RunInputs
+from robotdesc.output import RunInput, RunInputs
 from robotdesc.source import PassedValue, Provenance, Span
 
 log = logging.getLogger(__name__)
@@ -233,7 +233,8 @@ def _decode_result(data: Any, verified: set[str], target: str) -> LintResult:
         suppressed=_count(data["suppressed"]), config_path=config_path,
         rules_run=tuple(_code(c) for c in _list(data["rules_run"], 10_000)),
         suppressed_by_config=_count(data["suppressed_by_config"]),
-        inputs=RunInputs().adding(sorted(verified), "a file the lint read"))
+        inputs=RunInputs(tuple(RunInput(path, "a file the lint read")  # real paths already
+                               for path in sorted(verified))))
 
 
 def _diagnostic(data: Any, verified: set[str], target: str) -> Diagnostic:
