@@ -3,6 +3,7 @@ the source edits of a finding's fix. No LSP here (see lsp.py)."""
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import os
 from collections.abc import Iterable
@@ -13,12 +14,14 @@ from robotdesc.diagnostics import Diagnostic
 from robotdesc.errors import InputError
 from robotdesc.expansion import ExpandOptions
 from robotdesc.expansion.packages import enclosing_package
+from robotdesc.linting.driver import lint_expanded
 from robotdesc.linting.fix.engine import FIXED, FixOutcome, plan_fixes
 from robotdesc.linting.fix.run import MeshCase
 from robotdesc.linting.matrix import Variant
 from robotdesc.linting.parallel import cached_result, lint_target
 from robotdesc.linting.targets import LintTarget, discover_targets
 from robotdesc.rules.fixes import Applicability
+from robotdesc.server.edits import literal_changes, patch_document
 
 if TYPE_CHECKING:
     from robotdesc.linting.result import LintResult
@@ -59,6 +62,10 @@ class Session:
         self.results: dict[TargetKey, LintResult] = {}
         self.targets: dict[TargetKey, LintTarget] = {}
         self.failures: dict[TargetKey, InputError] = {}
+        #: per linted description: its sources' bytes and its inputs' file states, as the
+        #: expansion in `results` saw them (what a save's edit is compared with)
+        self.snapshots: dict[TargetKey, dict[str, bytes]] = {}
+        self.states: dict[TargetKey, dict[str, FileState | None]] = {}
 
     # -- linting ------------------------------------------------------------------------
 
@@ -93,8 +100,9 @@ class Session:
             if old is not None:
                 touched.update(_finding_paths(old.diagnostics))
             try:
-                result = cached_result(target, {}, self._options(), None, ()) \
-                    or lint_target(target, {}, self._options(), None, ())
+                result = self._edited(key, target, path) \
+                    or cached_result(target, {}, self._options(), None, ()) \
+                    or self._linted(key, target)
             except InputError as error:
                 self.failures[key] = error
                 self.results.pop(key, None)
@@ -103,6 +111,45 @@ class Session:
             self.targets[key], self.results[key] = target, result
             touched.update(_finding_paths(result.diagnostics))
         return {file: self.findings(file) for file in touched}
+
+    def _linted(self, key: TargetKey, target: LintTarget) -> LintResult:
+        """A full lint (expansion included), remembered with its sources' text."""
+        result = lint_target(target, {}, self._options(), None, ())
+        expanded = result.expanded
+        self.snapshots[key] = {file: data for file in (expanded.files if expanded else ())
+                               if (data := _read(file)) is not None}
+        self.states[key] = {item.path: _state(item.path) for item in
+                            (result.inputs.items if result.inputs is not None else ())}
+        return result
+
+    def _edited(self, key: TargetKey, target: LintTarget, path: str) -> LintResult | None:
+        """The lint of a save that changed only literal attribute values of `path`, on the
+        previous expansion edited in place (`robotdesc.server.edits`); None when the save is
+        not such an edit, or another input changed too."""
+        old, snapshot = self.results.get(key), self.snapshots.get(key, {})
+        if old is None or old.expanded is None or path not in snapshot:
+            return None
+        states = self.states.get(key, {})
+        real = os.path.realpath(path)
+        if any(_state(file) != state for file, state in states.items() if file != real):
+            return None  # something else changed as well: expand again
+        data = _read(path)
+        changes = None if data is None else literal_changes(snapshot[path], data)
+        if data is None or changes is None:
+            return None
+        xml = patch_document(old.expanded.xml, old.expanded.files, path, changes)
+        if xml is None:
+            return None
+        options = self._options()
+        options = dataclasses.replace(options, package_map=tuple(options.package_map)
+                                      + tuple(target.config.packages))
+        result = lint_expanded(target.path, dataclasses.replace(old.expanded, xml=xml),
+                               target.config, options)
+        log.info("%s: %d value(s) changed in %s, linted without expanding again",
+                 target.name(), len(changes), os.path.basename(path))
+        snapshot[path] = data
+        states[real] = _state(real)
+        return dataclasses.replace(result, variant=target.variant, inputs=old.inputs)
 
     def findings(self, path: str) -> list[Diagnostic]:
         """The findings of every linted description at `path`, each once (matrix variants
@@ -159,6 +206,26 @@ class Session:
 
     def _options(self) -> Any:
         return self.expand_options if self.expand_options is not None else ExpandOptions()
+
+
+#: A file's state as `os.stat` gives it: size, modification time (ns), inode.
+FileState = tuple[int, int, int]
+
+
+def _state(path: str) -> FileState | None:
+    try:
+        info = os.stat(path)
+    except OSError:
+        return None
+    return (info.st_size, info.st_mtime_ns, info.st_ino)
+
+
+def _read(path: str) -> bytes | None:
+    try:
+        with open(path, "rb") as stream:
+            return stream.read()
+    except OSError:
+        return None
 
 
 def _sources(result: LintResult) -> set[str]:
