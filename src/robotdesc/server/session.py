@@ -134,6 +134,8 @@ class Session:
         if any(_state(file) != state for file, state in states.items() if file != real):
             return None  # something else changed as well: expand again
         data = _read(path)
+        if data is not None and data == snapshot[path] and _state(real) == states.get(real):
+            return old  # saved without a change: nothing to do
         changes = None if data is None else literal_changes(snapshot[path], data)
         if data is None or changes is None:
             return None
