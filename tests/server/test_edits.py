@@ -116,3 +116,18 @@ def test_a_structural_change_expands_again(tmp_path: Path,
     monkeypatch.setattr(driver, "expand_file", lambda *a, **k: calls.append(1) or expand(*a, **k))
     session.lint(str(part))
     assert calls
+
+
+def test_config_targets_that_differ_only_in_their_args_are_kept_apart(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The Engineer's three targets have no matrix variant, only different `args`."""
+    monkeypatch.setenv("ROBOTDESC_CACHE_DIR", str(tmp_path / "cache"))
+    top = _package(tmp_path)
+    (tmp_path / "robotdesc.toml").write_text(
+        '[[targets]]\nfile = "robot.urdf.xacro"\n\n'
+        '[[targets]]\nfile = "robot.urdf.xacro"\nargs = { extra = "1" }\n')
+    top.write_text(TOP.replace('<xacro:include', '<xacro:arg name="extra" default="0"/>\n'
+                               '  <xacro:include'))
+    session = Session()
+    session.lint(str(tmp_path / "part.xacro"))
+    assert sorted(args for _, args in session.results) == [(), (("extra", "1"),)]

@@ -30,8 +30,15 @@ log = logging.getLogger(__name__)
 
 SUFFIXES = (".urdf", ".xacro")
 
-#: A linted description: (target path, matrix variant).
+#: A linted description: (target path, its xacro arguments: the config target's and its
+#: matrix variant's). Not the variant alone: config targets that differ only in their
+#: fixed `args` (the Engineer's three) have no variant.
 TargetKey = tuple[str, Variant]
+
+
+def target_key(target: LintTarget) -> TargetKey:
+    """The key of a target in the session."""
+    return (target.path, tuple(target.args) + tuple(target.variant))
 
 
 @dataclass(frozen=True)
@@ -95,7 +102,7 @@ class Session:
         path = os.path.abspath(path)
         touched: set[str] = {path}
         for target in self.targets_for(path):
-            key = (target.path, tuple(target.variant))
+            key = target_key(target)
             old = self.results.get(key)
             if old is not None:
                 touched.update(_finding_paths(old.diagnostics))
@@ -191,7 +198,7 @@ class Session:
 
     def fix_all(self, path: str) -> list[FixAction]:
         """The safe fixes of every finding of the descriptions `path` belongs to."""
-        keys = {(t.path, tuple(t.variant)) for t in self.targets_for(path)}
+        keys = {target_key(t) for t in self.targets_for(path)}
         return [_action(o) for o in self._outcomes(False, keys) if o.status == FIXED]
 
     def _outcomes(self, unsafe: bool, keys: Iterable[TargetKey] | None = None
