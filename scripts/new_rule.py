@@ -121,7 +121,8 @@ def main(argv: list[str] | None = None) -> int:
     print(f"wrote {module}\nwrote {fixture}\nwrote {test}")
     if not ns.module:
         print(f"now add `{function},` to the import list in src/robotdesc/rules/catalog.py")
-    print("then write the check, and: python -m robotdesc.rules.docs > docs/rules.md")
+    print("then write the check, and: python -m robotdesc.rules.docs > docs/rules.md && "
+          "python -m robotdesc.rules.docs --index")
     return 0
 
 
