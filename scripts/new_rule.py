@@ -168,7 +168,8 @@ def main(argv: list[str] | None = None) -> int:
               "changes (diagnostics.ValueChange: element, attribute, new value); the edit "
               "engine writes them (a FIXERS entry in linting/fix/changes.py only when the rule "
               "cannot know the value)")
-    print("then write the check, and: python -m robotdesc.rules.docs > docs/rules.md")
+    print("then write the check, and: python -m robotdesc.rules.docs > docs/rules.md && "
+          "python -m robotdesc.rules.docs --index")
     return 0
 
 

@@ -3,7 +3,9 @@ what escapes it into the exit code. The commands themselves live in `robotdesc/c
 
 Exit codes: 0 no finding at or above --fail-on, 1 findings, 2 an input could not be checked
 (or the command line is wrong), 3 internal error (a bug), 130 interrupted.
-Heavy modules are imported inside the commands so that `robotdesc --help` starts fast.
+Start-up is one interpreter and little more: only the chosen command's module is imported
+(`robotdesc --version` and `--help` import none), heavy modules are imported inside the
+commands, and the failure renderer only when an input fails (tests/test_startup.py).
 """
 
 from __future__ import annotations
@@ -16,11 +18,8 @@ import sys
 from collections.abc import Callable, Sequence
 
 from robotdesc._version import __version__
-from robotdesc.commands import COMMAND_MODULES, modules_for
-from robotdesc.commands.inputs import EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_OK
-from robotdesc.errors import InputError
-from robotdesc.linting.result import LintFailure
-from robotdesc.report.text import render_failure
+from robotdesc.commands import COMMAND_HELP, COMMAND_MODULES, modules_for
+from robotdesc.commands.exit_codes import EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_OK
 
 BUG_REPORT_URL = "https://github.com/robotdesc/robotdesc/issues"
 
@@ -65,13 +64,13 @@ def _run(ns: argparse.Namespace, verbose: int) -> int:
     except KeyboardInterrupt:
         sys.stderr.write("robotdesc: interrupted\n")
         return EXIT_INTERRUPTED
-    except InputError as exc:  # path:line:col: error: message, the source, the call chain
-        sys.stderr.write(render_failure(LintFailure("robotdesc", exc)))
-        return EXIT_INPUT
     except BrokenPipeError:  # e.g. `robotdesc rules | head`
         _silence_stdout()
         return EXIT_OK
-    except Exception as exc:  # noqa: BLE001 (anything else is a bug: say so; -v: traceback)
+    except Exception as exc:  # noqa: BLE001 (an input error, else a bug: say so; -v: traceback)
+        if _is_input_error(exc):  # path:line:col: error: message, the source, the call chain
+            sys.stderr.write(_render_input_error(exc))
+            return EXIT_INPUT
         detail = str(exc)
         detail = detail if len(detail) <= 500 else detail[:500] + f"... ({len(detail)} characters)"
         sys.stderr.write(f"robotdesc: internal error: {type(exc).__name__}: {detail}\n"
@@ -86,9 +85,30 @@ def _run(ns: argparse.Namespace, verbose: int) -> int:
         return EXIT_INTERNAL
 
 
+def _is_input_error(exc: Exception) -> bool:
+    """Whether `exc` is an `InputError` (exit 2). The error classes, the failure renderer and
+    `dataclasses` under them are imported only when a command fails: `robotdesc --version`
+    and `--help` must not pay for them."""
+    from robotdesc.errors import InputError
+
+    return isinstance(exc, InputError)
+
+
+def _render_input_error(exc: Exception) -> str:
+    """An input error as every command prints it (see `_is_input_error` for the imports)."""
+    from robotdesc.errors import InputError
+    from robotdesc.linting.result import LintFailure
+    from robotdesc.report.text import render_failure
+
+    assert isinstance(exc, InputError)
+    return render_failure(LintFailure("robotdesc", exc))
+
+
 def build_parser(argv: Sequence[str] | None = None) -> argparse.ArgumentParser:
-    """The argument parser (cheap: no heavy imports); given the command line, only with the
-    subcommand it names (`modules_for`), else with every subcommand."""
+    """The argument parser (cheap: no heavy imports). Without a command line: every subcommand,
+    complete. Given one: only the subcommand it names (`modules_for`); when it names none
+    (`--version`, `--help`, a typo), every subcommand as a name and its help only, without
+    importing a command module."""
     parser = argparse.ArgumentParser(
         prog="robotdesc",
         description="Expand xacro without ROS, and lint robot descriptions (URDF/xacro).",
@@ -121,6 +141,9 @@ def build_parser(argv: Sequence[str] | None = None) -> argparse.ArgumentParser:
     modules = COMMAND_MODULES if argv is None else modules_for(list(argv))
     for module in modules:  # each: register(commands, common=..., expansion=...)
         importlib.import_module(module).register(commands, common=common, expansion=expansion)
+    if not modules:  # listed for --help and a typo's "invalid choice"; never run
+        for name, summary in COMMAND_HELP.items():
+            commands.add_parser(name, help=summary)
     return parser
 
 

@@ -8,7 +8,7 @@ import importlib
 import pytest
 
 from robotdesc.cli import build_parser, main
-from robotdesc.commands import COMMAND_MODULES, COMMANDS, modules_for
+from robotdesc.commands import COMMAND_HELP, COMMAND_MODULES, COMMANDS, modules_for
 
 
 def _subcommands(parser: argparse.ArgumentParser) -> list[str]:
@@ -43,8 +43,16 @@ def test_a_command_line_imports_only_its_command() -> None:
         "robotdesc.commands.expand",)
     assert modules_for(["rule", "J101"]) == ("robotdesc.commands.rules",)
     assert _subcommands(build_parser(["expand", "x.xacro"])) == ["expand"]
-    for everything in ([], ["--help"], ["--version"], ["lnt", "x.urdf"]):
-        assert modules_for(everything) == COMMAND_MODULES
+    for nothing in ([], ["--help"], ["--version"], ["lnt", "x.urdf"]):
+        assert modules_for(nothing) == ()
+
+
+def test_without_a_command_every_command_is_listed_with_its_registered_help() -> None:
+    def helps(parser: argparse.ArgumentParser) -> dict[str, str | None]:
+        action = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+        return {choice.dest: choice.help for choice in action._choices_actions}
+
+    assert helps(build_parser(["--help"])) == helps(build_parser()) == COMMAND_HELP
 
 
 def test_a_typo_in_the_command_still_lists_every_command(

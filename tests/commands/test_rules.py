@@ -6,9 +6,10 @@ import argparse
 
 import pytest
 
-from robotdesc.commands.rules import rule_help, run_rule
+from robotdesc.commands.rules import run_rule
 from robotdesc.errors import UsageError
 from robotdesc.rules.catalog import get_rule
+from robotdesc.rules.docs import rule_help
 
 
 def test_rule_help_lists_options_and_defaults() -> None:

@@ -10,7 +10,8 @@ import pytest
 
 from robotdesc.model.parse import parse_urdf
 from robotdesc.rules.catalog import all_rules
-from robotdesc.rules.docs import REGENERATE, render_rules_markdown
+from robotdesc.rules.docs import REGENERATE, REGENERATE_INDEX, render_index, render_rules_markdown
+from robotdesc.rules.index import INDEX_FILE
 from robotdesc.rules.registry import RuleContext, run_rule
 
 RULES_MD = Path(__file__).resolve().parents[2] / "docs" / "rules.md"
@@ -66,3 +67,10 @@ def test_docs_rules_md_is_current() -> None:
     expected = render_rules_markdown()
     actual = RULES_MD.read_text(encoding="utf-8") if RULES_MD.exists() else ""
     assert actual == expected, f"docs/rules.md is out of date; regenerate it with `{REGENERATE}`"
+
+
+def test_the_rule_index_is_current() -> None:
+    """`robotdesc rules` and `rule CODE` read it (tests/test_startup.py)."""
+    actual = Path(INDEX_FILE).read_text(encoding="utf-8") if Path(INDEX_FILE).exists() else ""
+    assert actual == render_index(), f"the rule index is out of date; regenerate it with " \
+                                     f"`{REGENERATE_INDEX}`"

@@ -96,3 +96,70 @@ def test_server_publishes_a_finding_in_an_included_macro_file_and_fixes_it(engin
     assert edit.range.start.line == edit.range.end.line == 44
     assert line[edit.range.start.character:edit.range.end.character] == "0 0 2"
     assert edit.new_text == "0 0 1"
+
+
+CLEAN = """<?xml version="1.0"?>
+<robot name="clean">
+  <link name="base">
+    <inertial><mass value="1"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+  </link>
+</robot>
+"""
+
+
+async def _open_and_collect(path: Path, cache: Path) -> dict[str, list[types.Diagnostic]]:
+    client = LanguageClient("test-client", "1")
+    published: dict[str, list[types.Diagnostic]] = {}
+    arrived = asyncio.Event()
+
+    @client.feature(types.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS)
+    def on_diagnostics(params: types.PublishDiagnosticsParams) -> None:
+        published[params.uri] = params.diagnostics
+        arrived.set()
+
+    env = {**os.environ, "ROBOTDESC_CACHE_DIR": str(cache)}
+    await client.start_io(sys.executable, "-m", "robotdesc", "server", env=env)
+    try:
+        await client.initialize_async(types.InitializeParams(
+            capabilities=types.ClientCapabilities()))
+        client.initialized(types.InitializedParams())
+        uri = path_to_uri(str(path))
+        client.text_document_did_open(types.DidOpenTextDocumentParams(types.TextDocumentItem(
+            uri=uri, language_id="xml", version=1, text=path.read_text())))
+        await asyncio.wait_for(_until(lambda: uri in published, arrived), TIMEOUT)
+        await client.shutdown_async(None)
+        client.exit(None)
+        return published
+    finally:
+        await client.stop()
+
+
+def test_a_clean_file_gets_an_empty_list_not_silence(tmp_path: Path) -> None:
+    """An editor shows "no problems" rather than "still linting" (issue 34, item 4)."""
+    robot = tmp_path / "clean" / "clean.urdf"
+    robot.parent.mkdir()
+    robot.write_text(CLEAN)
+    published = asyncio.run(_open_and_collect(robot, tmp_path / "cache"))
+    assert {uri: list(found) for uri, found in published.items()} == {
+        path_to_uri(str(robot)): []}
+
+
+def test_an_unchanged_description_is_read_from_the_result_cache(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    from robotdesc.linting import parallel
+    from robotdesc.server.session import Session
+
+    monkeypatch.setenv("ROBOTDESC_CACHE_DIR", str(tmp_path / "cache"))
+    robot = tmp_path / "r" / "broken.urdf"
+    robot.parent.mkdir()
+    robot.write_text(CLEAN.replace('ixx="0.01"', 'ixx="-0.01"'))
+    os.utime(robot, ns=(1_600_000_000 * 10**9,) * 2)
+    first = Session().lint(str(robot))[str(robot)]
+    assert first
+
+    def refuse(*args: object, **kwargs: object) -> None:
+        raise AssertionError("linted although nothing changed")
+
+    monkeypatch.setattr(parallel, "lint_file", refuse)
+    assert Session().lint(str(robot))[str(robot)] == first

@@ -13,6 +13,11 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from robotdesc.commands.exit_codes import EXIT_FINDINGS as EXIT_FINDINGS  # re-exported
+from robotdesc.commands.exit_codes import EXIT_INPUT as EXIT_INPUT
+from robotdesc.commands.exit_codes import EXIT_INTERNAL as EXIT_INTERNAL
+from robotdesc.commands.exit_codes import EXIT_INTERRUPTED as EXIT_INTERRUPTED
+from robotdesc.commands.exit_codes import EXIT_OK as EXIT_OK
 from robotdesc.config import discover_config, load_config
 from robotdesc.errors import UsageError
 from robotdesc.expansion import ExpandOptions
@@ -21,8 +26,6 @@ if TYPE_CHECKING:
     from robotdesc.config import Config
     from robotdesc.expansion import ExpandOptions  # noqa: TC004
 
-#: The exit codes every command shares.
-EXIT_OK, EXIT_FINDINGS, EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED = 0, 1, 2, 3, 130
 
 
 def split_inputs(inputs: Sequence[str]) -> tuple[list[str], dict[str, str]]:

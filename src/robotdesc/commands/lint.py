@@ -86,6 +86,11 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
     lint.add_argument("--jobs", "-j", type=int, default=1, metavar="N",
                       help="lint N targets at once in worker processes (0: one per CPU; "
                            "default: 1)")
+    lint.add_argument("--scheduler", metavar="ADDRESS",
+                      help="lint the targets on a Dask cluster at ADDRESS (tcp://host:8786), "
+                           "or 'local' for one of --jobs processes on this machine; the "
+                           "files must be at the same paths on its workers; needs "
+                           "robotdesc[dask] (docs/ci.md)")
     lint.add_argument("--fix", action="store_true",
                       help="write the safe fixes of findings into the xacro/URDF sources "
                            "(where the value is a literal), then report what remains")
@@ -190,10 +195,10 @@ def selectors(values: Sequence[str], flag: str) -> list[str]:
     Raises:
         UsageError: a selector matches no rule.
     """
-    from robotdesc.rules.catalog import all_rules
-
     found = [part.strip() for value in values for part in value.split(",") if part.strip()]
-    if found:
+    if found:  # the registry only when there is something to check (a warm lint skips it)
+        from robotdesc.rules.catalog import all_rules
+
         check_selectors(found, all_rules(), flag)
     return found
 
@@ -206,6 +211,11 @@ def _lint_with_progress(ns: argparse.Namespace, targets: list[LintTarget],
     from robotdesc.linting.parallel import effective_jobs, lint_targets
 
     with progress_for(ns, "lint", total=len(targets), unit="targets") as progress:
+        if getattr(ns, "scheduler", None):
+            progress.update(0, detail=f"Dask cluster {ns.scheduler}")
+            return lint_targets(targets, args=args, expand_options=options, select=select,
+                                ignore=ignore, jobs=ns.jobs or 0, scheduler=ns.scheduler,
+                                on_done=progress.update)
         if min(effective_jobs(ns.jobs), len(targets)) > 1:
             progress.update(0, detail=f"{effective_jobs(ns.jobs)} worker processes")
             return lint_targets(targets, args=args, expand_options=options, select=select,

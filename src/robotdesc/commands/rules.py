@@ -1,7 +1,9 @@
 """`robotdesc rules` (the table of every rule) and `robotdesc rule CODE` (one rule's
 documentation, options and defaults).
 
-Exit codes: 0 printed, 2 an unknown rule.
+Exit codes: 0 printed, 2 an unknown rule. Both read the generated rule index
+(`robotdesc.rules.index`), so that they start without importing every rule module; the
+registry (and the error classes) only when the index does not know the rule.
 """
 
 from __future__ import annotations
@@ -9,15 +11,11 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
-from robotdesc.commands.inputs import EXIT_OK
-from robotdesc.errors import UsageError
+from robotdesc.commands.exit_codes import EXIT_OK
 from robotdesc.report.table import render_table
-from robotdesc.rules.fixes import FIXABLE
-
-if TYPE_CHECKING:
-    from robotdesc.rules.registry import Rule
+from robotdesc.rules.index import read_index
 
 
 def register(subparsers: Any, *, common: argparse.ArgumentParser,
@@ -39,26 +37,22 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
 
 
 def run_rules(ns: argparse.Namespace) -> int:
-    """The handler of `rules`: one row per rule."""
-    from robotdesc.rules.catalog import all_rules
+    """The handler of `rules`: one row per rule (from the rule index when it is current)."""
+    index = read_index()
+    if index is not None:
+        rows = list(index.rows)
+    else:  # sources changed since the index was made: ask the registry (slower)
+        from robotdesc.rules.docs import rule_rows
 
-    rules = all_rules()
+        rows = rule_rows()
     if getattr(ns, "format", "text") == "json":
-        payload = [{"code": r.code, "name": r.name, "family": r.family,
-                    "severity": str(r.severity), "default": default_state(r),
-                    "summary": r.summary} for r in rules]
-        sys.stdout.write(json.dumps(payload, indent=1) + "\n")
+        keys = ("code", "name", "family", "severity", "default", "summary")
+        sys.stdout.write(json.dumps([dict(zip(keys, row)) for row in rows], indent=1) + "
+")
         return EXIT_OK
-    rows = [(r.code, r.name, r.family, str(r.severity), default_state(r), r.summary)
-            for r in rules]
     header = ("CODE", "NAME", "FAMILY", "SEVERITY", "DEFAULT", "SUMMARY")
     sys.stdout.write(render_table(header, rows, max_cell=30))
     return EXIT_OK
-
-
-def default_state(rule: Rule) -> str:
-    """"on" for a rule that runs by default, "off" for an opt-in one."""
-    return "off" if rule.opt_in else "on"
 
 
 def run_rule(ns: argparse.Namespace) -> int:
@@ -67,38 +61,16 @@ def run_rule(ns: argparse.Namespace) -> int:
     Raises:
         UsageError: no rule has this code or name.
     """
-    from robotdesc.rules.catalog import get_rule
+    index = read_index()
+    text = None if index is None else index.find(ns.code)
+    if text is None:  # unknown, or the index is out of date: ask the registry (slower)
+        from robotdesc.errors import UsageError
+        from robotdesc.rules.catalog import get_rule
+        from robotdesc.rules.docs import rule_help
 
-    found = get_rule(ns.code)
-    if found is None:
-        raise UsageError(f"unknown rule '{ns.code}' (see `robotdesc rules`)")
-    sys.stdout.write(rule_help(found))
+        found = get_rule(ns.code)
+        if found is None:
+            raise UsageError(f"unknown rule '{ns.code}' (see `robotdesc rules`)")
+        text = rule_help(found)
+    sys.stdout.write(text)
     return EXIT_OK
-
-
-def rule_help(rule: Rule) -> str:
-    """A rule's documentation as `robotdesc rule CODE` prints it."""
-    lines = [f"{rule.code} {rule.name}", "",
-             f"Family: {rule.family}", f"Default severity: {rule.severity}",
-             "Default: " + ("off (opt-in: select it by code, prefix, name or ALL)"
-                            if rule.opt_in else "on")]
-    if rule.needs:
-        lines.append(f"Needs: {', '.join(sorted(rule.needs))}")
-
-    if rule.code in FIXABLE:
-        applicability = FIXABLE[rule.code].value
-        lines.append(f"Fix: {applicability} (applied by `robotdesc lint --fix`"
-                     + (" --unsafe-fixes)" if applicability == "unsafe" else ")"))
-    lines += ["", rule.doc or rule.summary, ""]
-    fields = rule.option_fields()
-    if fields:
-        defaults = rule.default_options()
-        lines.append(f"Options ([tool.robotdesc.rules.{rule.code}]):")
-        for field in fields:
-            kind = field.type if isinstance(field.type, str) else getattr(
-                field.type, "__name__", str(field.type))
-            lines.append(f"  {field.name} ({kind}) = {getattr(defaults, field.name)!r}")
-        lines.append("")
-    else:
-        lines += ["Options: none", ""]
-    return "\n".join(lines)

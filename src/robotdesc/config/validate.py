@@ -41,13 +41,13 @@ def config_from_mapping(table: Mapping[str, Any], path: str, *, text: str = "",
         ConfigError: an unknown key or a bad value, at its line.
     """
     where = Locator(path, text, prefix)
-    if rules is None:
+    table = {_snake(key): value for key, value in table.items()}
+    if rules is None and any(key in table for key in _NAMING_RULES):
         from robotdesc.rules.catalog import all_rules  # every rule module, lxml among them
 
         rules = all_rules()
-    known = list(rules)
+    known = list(rules or ())  # no key names a rule: the registry is not needed (warm lint)
 
-    table = {_snake(key): value for key, value in table.items()}
     unknown = sorted(set(table) - set(KEYS))
     if unknown:
         raise where.error(unknown[0], f"unknown key '{prefix}{unknown[0]}' "
@@ -67,6 +67,10 @@ def config_from_mapping(table: Mapping[str, Any], path: str, *, text: str = "",
         targets=_targets(table.get("targets", []), where, tree),
         sim=_sim_settings(table.get("sim", {}), where),
     )
+
+
+#: The keys whose values name rules (checked against the registry).
+_NAMING_RULES = ("select", "ignore", "per_file_ignores", "rules", "severity")
 
 
 def _snake(key: str) -> str:

@@ -108,6 +108,6 @@ class CollisionScene:
 
 
 def all_link_pairs(links: list[str]) -> list[tuple[str, str]]:
-    """Every unordered pair of distinct link names, sorted."""
-    return [(min(first, second), max(first, second))
-            for first, second in combinations(sorted(set(links)), 2)]
+    """Every unordered pair of distinct link names, sorted (combinations of a sorted list
+    are already in order: (first, second) with first < second)."""
+    return list(combinations(sorted(set(links)), 2))

@@ -30,7 +30,7 @@ log = logging.getLogger(__name__)
 
 UNUSED_SUPPRESSION = "RD001"
 
-__all__ = ["LintResult", "RuleCrashed", "lint_file"]
+__all__ = ["LintResult", "RuleCrashed", "lint_expanded", "lint_file"]
 
 
 def lint_file(path: str, config: Config | None = None, *,
@@ -52,9 +52,6 @@ def lint_file(path: str, config: Config | None = None, *,
         InputError: the file could not be expanded or parsed (exit code 2).
         RuleCrashed: a rule raised (a bug, exit code 3).
     """
-    from robotdesc.model.parse import parse_urdf
-    from robotdesc.rules.catalog import all_rules
-
     target = os.path.abspath(path)
     config = config if config is not None else discover_config(target)
     options = expand_options or ExpandOptions()
@@ -64,6 +61,31 @@ def lint_file(path: str, config: Config | None = None, *,
     options = dataclasses.replace(options, unchecked_args=tuple(
         name for name, _ in config.args if name not in (args or {})))
     expanded = expand_file(target, merged_args, options=options)
+    return lint_expanded(target, expanded, config, options, select=select, ignore=ignore)
+
+
+def lint_expanded(target: str, expanded: Expanded, config: Config, options: ExpandOptions, *,
+                  select: Sequence[str] | None = None, ignore: Sequence[str] = ()
+                  ) -> LintResult:
+    """Lint an expansion of `target` (parse, rules, ignores, suppressions): `lint_file`
+    after its expansion, also for a document the caller changed (the language server's
+    edit of a literal value).
+
+    Args:
+        target: the linted file (absolute).
+        expanded: its expansion.
+        config: the settings that apply.
+        options: the expansion settings it was made with (`package_map` with the config's
+            packages: the meshes resolve through them).
+        select, ignore: as `lint_file`.
+
+    Raises:
+        InputError: the document could not be parsed (exit code 2).
+        RuleCrashed: a rule raised (a bug, exit code 3).
+    """
+    from robotdesc.model.parse import parse_urdf
+    from robotdesc.rules.catalog import all_rules
+
     robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
 
     chosen_select = tuple(select) if select is not None else config.select

@@ -52,6 +52,17 @@ def mesh_inputs(robot: Robot | None, package_paths: Sequence[str] = (),
     return RunInputs().adding(paths, "a mesh of the robot")
 
 
+def meshes_resolve(robot: Robot | None, package_paths: Sequence[str] = (),
+                   package_map: Sequence[tuple[str, str]] = ()) -> bool:
+    """Whether every `<mesh>` of the robot names a file that exists (found as `mesh_inputs`
+    finds them): a result that depends on a missing mesh is not cached."""
+    if robot is None:
+        return False
+    meshes = MeshLocator.for_robot(robot, package_paths, package_map, allow_absolute=True)
+    return all(path is not None and os.path.isfile(path)
+               for path in map(meshes.path, _mesh_refs(robot)))
+
+
 def run_inputs(source: str | None = None, *, config_path: str | None = None,
                expanded: Expanded | None = None, robot: Robot | None = None, package_paths: Sequence[str] = (),
                package_map: Sequence[tuple[str, str]] = (),

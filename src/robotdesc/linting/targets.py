@@ -300,12 +300,30 @@ def is_srdf(path: str, root: XmlElement | None = None) -> bool:
     `*.srdf[.xacro]`, or a `<robot>` whose top level holds SRDF elements and no link or joint."""
     if ".srdf" in os.path.basename(path).lower():
         return True
+    if root is None and not _mentions_srdf_elements(path):
+        return False  # without parsing (a warm lint of a file does not import lxml)
     root = _read_root(path) if root is None else root
     if root is None or _local_name(root) != "robot":
         return False
     names = {xacro_name(element) for element in _top_level(root)}
     return (any(name in _SRDF_ELEMENTS for name, is_xacro in names if not is_xacro)
             and not any(name in ("link", "joint") for name, is_xacro in names if not is_xacro))
+
+
+def _mentions_srdf_elements(path: str) -> bool:
+    """Whether the file's text holds the start tag of an SRDF element (or is unreadable):
+    a file without any cannot be an SRDF."""
+    try:
+        with open(path, "rb") as stream:
+            data = stream.read(MAX_SRDF_PROBE_BYTES)
+    except OSError:
+        return True
+    return any(re.search(rb"<(?:[A-Za-z_][\w.\-]*:)?" + name.encode() + rb"[\s/>]", data)
+               for name in _SRDF_ELEMENTS)
+
+
+#: How much of a file `is_srdf` reads to look for SRDF elements before parsing it.
+MAX_SRDF_PROBE_BYTES = 64 << 20
 
 
 def _read_root(path: str) -> XmlElement | None:

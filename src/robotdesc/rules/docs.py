@@ -1,6 +1,8 @@
 """Render the rule reference (docs/rules.md) from the registry.
 
 Regenerate with `python -m robotdesc.rules.docs > docs/rules.md`; a test keeps it current.
+The same module writes the rule index that `robotdesc rules` and `robotdesc rule` read
+(`python -m robotdesc.rules.docs --index`, see `robotdesc.rules.index`).
 """
 
 from __future__ import annotations
@@ -11,12 +13,14 @@ import sys
 
 from robotdesc.rules.catalog import all_rules
 from robotdesc.rules.fixes import FIXABLE
+from robotdesc.rules.index import INDEX_FILE, Row, index_document
 from robotdesc.rules.registry import Rule
 
 #: Lines of a rule docstring that become section headings.
 SECTION_HEADINGS = ("Why is this bad?", "Example")
 
 REGENERATE = "python -m robotdesc.rules.docs > docs/rules.md"
+REGENERATE_INDEX = "python -m robotdesc.rules.docs --index"
 
 
 def render_rules_markdown() -> str:
@@ -111,8 +115,57 @@ def _attribute_descriptions(options: type) -> dict[str, str]:
     return described
 
 
-def main() -> None:
-    """Write the rule reference to stdout."""
+def rule_help(rule_: Rule) -> str:
+    """A rule's documentation as `robotdesc rule CODE` prints it."""
+    lines = [f"{rule_.code} {rule_.name}", "",
+             f"Family: {rule_.family}", f"Default severity: {rule_.severity}",
+             "Default: " + ("off (opt-in: select it by code, prefix, name or ALL)"
+                            if rule_.opt_in else "on")]
+    if rule_.needs:
+        lines.append(f"Needs: {', '.join(sorted(rule_.needs))}")
+
+    if rule_.code in FIXABLE:
+        applicability = FIXABLE[rule_.code].value
+        lines.append(f"Fix: {applicability} (applied by `robotdesc lint --fix`"
+                     + (" --unsafe-fixes)" if applicability == "unsafe" else ")"))
+    lines += ["", rule_.doc or rule_.summary, ""]
+    fields = rule_.option_fields()
+    if fields:
+        defaults = rule_.default_options()
+        lines.append(f"Options ([tool.robotdesc.rules.{rule_.code}]):")
+        for field in fields:
+            kind = field.type if isinstance(field.type, str) else getattr(
+                field.type, "__name__", str(field.type))
+            lines.append(f"  {field.name} ({kind}) = {getattr(defaults, field.name)!r}")
+        lines.append("")
+    else:
+        lines += ["Options: none", ""]
+    return "\n".join(lines)
+
+
+def default_state(rule_: Rule) -> str:
+    """"on" for a rule that runs by default, "off" for an opt-in one."""
+    return "off" if rule_.opt_in else "on"
+
+
+def rule_rows() -> list[Row]:
+    """(code, name, family, severity, default, summary) per rule, as `robotdesc rules`
+    lists them."""
+    return [(r.code, r.name, r.family, str(r.severity), default_state(r), r.summary)
+            for r in all_rules()]
+
+
+def render_index() -> str:
+    """The rule index (`robotdesc.rules.index`) made from the registry."""
+    return index_document(rule_rows(), {r.code: rule_help(r) for r in all_rules()})
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Write the rule reference to stdout; with `--index`, rewrite the rule index."""
+    if "--index" in (sys.argv[1:] if argv is None else argv):
+        with open(INDEX_FILE, "w", encoding="utf-8") as stream:
+            stream.write(render_index())
+        return
     sys.stdout.write(render_rules_markdown())
 
 

@@ -358,9 +358,9 @@ class _Walker:
             return inherited
         return Provenance(Span(self.path, element.sourceline or 0))
 
-    def visit(self, element: etree._Element, spec: ElementSpec, inherited: Provenance | None,
+    def visit(self, element: etree._Element, spec: ElementSpec, inherited: _Where | None,
               owner: str) -> None:
-        where = self.where(element, inherited)
+        where = _Where(self, element, inherited)
         tag = element.tag
         present = {name for name in element.attrib if not name.startswith("{")}
         for name in sorted(present):
@@ -368,8 +368,8 @@ class _Walker:
                 continue
             hint = _suggest(name, spec.attributes - present, spec.attributes)
             self.found.append(UnknownName(
-                "attribute", name, tag, hint or "it is not read by any URDF parser", where,
-                f"{owner}@{name}"))
+                "attribute", name, tag, hint or "it is not read by any URDF parser",
+                where.get(), f"{owner}@{name}"))
         counts: dict[str, int] = {}
         for child in element:
             if not isinstance(child.tag, str) or child.tag.startswith("{"):
@@ -385,7 +385,23 @@ class _Walker:
             elif not spec.known_child(child_tag) and spec.judge_children:
                 self.found.append(UnknownName(
                     "element", child_tag, tag, _element_hint(child_tag, tag, spec),
-                    self.where(child, where), child_owner))
+                    _Where(self, child, where).get(), child_owner))
+
+
+class _Where:
+    """An element's provenance, decoded only when a finding needs it: most elements of a
+    large robot have none, and decoding every one was most of the walk."""
+
+    def __init__(self, walker: _Walker, element: etree._Element,
+                 inherited: _Where | None) -> None:
+        self.walker, self.element, self.inherited = walker, element, inherited
+        self.value: Provenance | None = None
+
+    def get(self) -> Provenance:
+        if self.value is None:
+            parent = self.inherited.get() if self.inherited is not None else None
+            self.value = self.walker.where(self.element, parent)
+        return self.value
 
 
 def _owner(owner: str, child: etree._Element, index: int) -> str:

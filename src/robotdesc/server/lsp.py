@@ -2,7 +2,8 @@
 
 On open and save of a .urdf/.xacro file it lints the descriptions the file belongs to and
 publishes each finding in the file and at the line it points to (files reached only through
-includes and macros too), with the macro call chain as related information. Code actions
+includes and macros too), with the macro call chain as related information; the file itself
+always gets a publication, an empty list when it is clean. Code actions
 apply the fixes of `robotdesc lint --fix` (unsafe ones marked), and "fix all" the safe ones.
 """
 
@@ -51,7 +52,9 @@ def build_server(session: Session | None = None) -> LanguageServer:
         for file, findings in state.lint(path).items():
             items = [_lsp_diagnostic(d) for d in findings]
             items += [_error_diagnostic(e) for e in state.errors(file)]
-            if items or file in published:
+            # the file opened or saved always gets an answer, an empty list when it is clean
+            # (so that "clean" does not look like "still linting"); others when they change
+            if items or file in published or file == path:
                 server.text_document_publish_diagnostics(types.PublishDiagnosticsParams(
                     uri=path_to_uri(file), diagnostics=items))
                 (published.add if items else published.discard)(file)

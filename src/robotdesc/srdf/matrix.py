@@ -19,7 +19,7 @@ import multiprocessing
 import sys
 from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -117,13 +117,20 @@ class CollisionMatrix:
 
 @dataclass(frozen=True, eq=False)
 class PreparedScene:
-    """The pieces shared by the matrix and the default-pose rule."""
+    """The pieces shared by the matrix and the default-pose rule.
+
+    Attributes:
+        geometries: the coal geometry of each shape of `spec` (by its index), built when a
+            first configuration needs it and kept for the next ones (a configuration moves
+            the shapes, it does not change them: building a mesh's BVH is most of a check).
+    """
 
     kinematics: KinematicModel
     spec: SceneSpec
     adjacent: frozenset[tuple[str, str]]
     links_without_geometry: tuple[str, ...]
     problems: tuple[ShapeProblem, ...]
+    geometries: dict[int, Any] = field(default_factory=dict, repr=False)
 
 
 def prepare_scene(robot: Robot, mesh_path: MeshPath, convex: bool = False) -> PreparedScene:
@@ -198,7 +205,9 @@ def collisions_at(prepared: PreparedScene, configuration: dict[str, float],
             matrix = world[number]
             transform = coal.Transform3s(np.ascontiguousarray(matrix[:3, :3]),
                                          np.ascontiguousarray(matrix[:3, 3]))
-            objects[number] = (to_coal(spec.shapes[number], spec.convex), transform)
+            if number not in prepared.geometries:  # the same shapes in every configuration
+                prepared.geometries[number] = to_coal(spec.shapes[number], spec.convex)
+            objects[number] = (prepared.geometries[number], transform)
         return objects[number]
 
     request = coal.CollisionRequest()

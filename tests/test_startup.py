@@ -1,0 +1,100 @@
+"""Start-up: the commands that read no description import only what they need (issue 31).
+
+Each command line runs in a fresh interpreter, which then lists the modules it imported. The
+modules below cost most of the start-up (numpy and trimesh alone are hundreds of ms); a change
+that pulls one of them back in fails here, whatever the machine's speed. The wall times, against
+the bare interpreter, are measured by benchmarks/bench_startup.py.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from robotdesc.rules.catalog import all_rules
+from robotdesc.rules.index import read_index
+
+SRC = Path(__file__).resolve().parents[1] / "src"
+
+#: Never imported by `--version`, `--help`, `rules`, `rule CODE`.
+HEAVY = ("numpy", "trimesh", "lxml", "rich", "xacro", "yaml", "pygls", "robotdesc.linting",
+         "robotdesc.rules.catalog", "robotdesc.rules.registry", "robotdesc.expansion",
+         "robotdesc.model", "robotdesc.mesh", "robotdesc.config", "robotdesc.report.text")
+#: Not imported by `--version` and `--help` either (the failure path's classes and
+#: `dataclasses` under them).
+ALSO_NOT_FOR_VERSION = ("dataclasses", "robotdesc.errors", "robotdesc.rules")
+
+PROBE = """
+import contextlib, io, json, sys
+from robotdesc.cli import main
+with contextlib.redirect_stdout(io.StringIO()):
+    code = main(sys.argv[1:])
+sys.stderr.write(json.dumps({"code": code, "modules": sorted(sys.modules)}))
+"""
+
+
+def _imported(*words: str, env: dict[str, str] | None = None) -> set[str]:
+    done = subprocess.run([sys.executable, "-c", PROBE, *words], capture_output=True,
+                          text=True, env=dict(env or os.environ, PYTHONPATH=str(SRC)),
+                          check=False)
+    report = json.loads(done.stderr.strip().splitlines()[-1])
+    assert report["code"] == 0, done.stderr
+    return set(report["modules"])
+
+
+def _offending(modules: set[str], forbidden: tuple[str, ...]) -> list[str]:
+    return sorted(m for m in modules if any(m == f or m.startswith(f + ".") for f in forbidden))
+
+
+@pytest.mark.parametrize("words", [["--version"], ["--help"]], ids=" ".join)
+def test_version_and_help_import_no_command(words: list[str]) -> None:
+    modules = _imported(*words)
+    assert _offending(modules, HEAVY + ALSO_NOT_FOR_VERSION) == []
+    assert not [m for m in modules if m.startswith("robotdesc.commands.")
+                and m != "robotdesc.commands.exit_codes"]
+
+
+@pytest.mark.parametrize("words", [["rules"], ["rule", "J101"], ["rule", "missing-joint-limit"]],
+                         ids=" ".join)
+def test_rules_and_rule_read_the_index_not_the_rule_modules(words: list[str]) -> None:
+    assert read_index() is not None, "the rule index is out of date (see test_rule_docs.py)"
+    assert _offending(_imported(*words), HEAVY) == []
+
+
+def test_the_index_answers_as_the_registry() -> None:
+    index = read_index()
+    assert index is not None
+    assert [row[0] for row in index.rows] == [r.code for r in all_rules()]
+    for rule_ in all_rules():
+        assert index.find(rule_.code.lower()) == index.find(rule_.name) == index.help[rule_.code]
+
+
+def test_an_index_of_other_sources_is_not_used(tmp_path: Path) -> None:
+    stale = tmp_path / "index.json"
+    stale.write_text(json.dumps({"sources": "0" * 64, "rows": [], "help": {}}))
+    assert read_index(str(stale)) is None
+    for junk in ("[]", "{", json.dumps({"sources": None})):
+        stale.write_text(junk)
+        assert read_index(str(stale)) is None
+
+
+#: Not imported by a lint answered from the result cache (nothing is expanded or checked).
+NOT_FOR_A_WARM_LINT = ("numpy", "trimesh", "lxml", "xacro", "rich", "asyncio",
+                       "multiprocessing", "robotdesc.rules.catalog", "robotdesc.model.parse",
+                       "robotdesc.expansion.runner")
+
+
+def test_a_warm_lint_reads_the_result_cache_and_imports_no_checker(tmp_path: Path) -> None:
+    robot = tmp_path / "r.urdf"
+    robot.write_text("<robot name='r'><link name='a'><inertial><mass value='1'/><inertia "
+                     "ixx='1' ixy='0' ixz='0' iyy='1' iyz='0' izz='1'/></inertial></link>"
+                     "</robot>")
+    os.utime(robot, ns=(1_600_000_000 * 10**9,) * 2)
+    env = dict(os.environ, ROBOTDESC_CACHE_DIR=str(tmp_path / "cache"))
+    _imported("lint", "-q", str(robot), env=env)  # cold: fills the cache
+    assert _offending(_imported("lint", "-q", str(robot), env=env), NOT_FOR_A_WARM_LINT) == []
