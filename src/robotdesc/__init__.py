@@ -15,6 +15,7 @@ Heavy modules (xacro, lxml, the rules) are imported on first use, so `import rob
 
 from __future__ import annotations
 
+import os
 import sys
 from typing import TYPE_CHECKING, Any, Literal, Mapping, Sequence
 

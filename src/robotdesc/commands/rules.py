@@ -47,8 +47,7 @@ def run_rules(ns: argparse.Namespace) -> int:
         rows = rule_rows()
     if getattr(ns, "format", "text") == "json":
         keys = ("code", "name", "family", "severity", "default", "summary")
-        sys.stdout.write(json.dumps([dict(zip(keys, row)) for row in rows], indent=1) + "
-")
+        sys.stdout.write(json.dumps([dict(zip(keys, row)) for row in rows], indent=1) + "\n")
         return EXIT_OK
     header = ("CODE", "NAME", "FAMILY", "SEVERITY", "DEFAULT", "SUMMARY")
     sys.stdout.write(render_table(header, rows, max_cell=30))
