@@ -53,7 +53,7 @@ def test_property_value_is_edited_when_every_use_wants_the_change(tmp_path, caps
     path = make_package(tmp_path, PROPERTY)
     main(["lint", str(path), "--fix", "--select", "J107"])
     assert path.read_text() == PROPERTY.replace('value="0 3 0"', 'value="0 1 0"')
-    assert "fixed 2 finding(s) in 1 file(s)" in capsys.readouterr().err
+    assert "fixed 1 finding(s) in 1 file(s)" in capsys.readouterr().err  # one edit (issue 34)
 
 
 def test_property_used_elsewhere_is_refused_naming_its_line(tmp_path, capsys):

@@ -56,11 +56,13 @@ def test_malformed_xml_is_an_input_error_at_its_line(name: str, command: str,
 
 @pytest.mark.parametrize("name, line", [("inertia_overflow.urdf", 6), ("rpy_huge.urdf", 5),
                                         ("axis_underflow.urdf", 8), ("mass_nan_inf.urdf", 5)])
-def test_extreme_numbers_are_findings_at_their_line(name: str, line: int) -> None:
-    code, text = _run("lint", "--format", "json", str(FIXTURES / name))
+def test_extreme_numbers_are_findings_at_their_line(name: str, line: int,
+                                                   tmp_path: Path) -> None:
+    report_file = tmp_path / "report.json"
+    code, text = _run("lint", "--format", "json", "-o", str(report_file), str(FIXTURES / name))
     assert code == 1, text
     _clean(text)
-    report = json.loads(text[text.index("{"):])
+    report = json.loads(report_file.read_text())
     unreadable = [d for d in report["diagnostics"] if d["code"] == "S110"]
     assert any(d["line"] == line and d["column"] for d in unreadable), unreadable
     for command in ("inertia", "info"):
@@ -69,9 +71,11 @@ def test_extreme_numbers_are_findings_at_their_line(name: str, line: int) -> Non
         _clean(text)
 
 
-def test_start_tags_spanning_lines_are_located_where_they_open() -> None:
-    code, text = _run("lint", "--format", "json", str(FIXTURES / "multiline_start_tags.urdf"))
-    report = json.loads(text[text.index("{"):])
+def test_start_tags_spanning_lines_are_located_where_they_open(tmp_path: Path) -> None:
+    report_file = tmp_path / "report.json"
+    _run("lint", "--format", "json", "-o", str(report_file),
+         str(FIXTURES / "multiline_start_tags.urdf"))
+    report = json.loads(report_file.read_text())
     joint = [d for d in report["diagnostics"] if d["code"] == "S108"]
     assert joint and joint[0]["line"] == 6 and joint[0]["column"] == 3, joint
 

@@ -21,6 +21,7 @@ from robotdesc.commands.exit_codes import EXIT_OK as EXIT_OK
 from robotdesc.config import discover_config, load_config
 from robotdesc.errors import UsageError
 from robotdesc.expansion import ExpandOptions
+from robotdesc.linting.targets import LintTarget
 
 if TYPE_CHECKING:
     from robotdesc.config import Config
@@ -84,7 +85,6 @@ def single_input(ns: argparse.Namespace, verb: str) -> SingleInput:
     config = load_config(ns.config) if ns.config else discover_config(source)
     if os.path.isfile(source) and args:  # an undeclared one: a usage error before any work
         from robotdesc.linting.arguments import check_cli_arguments  # lxml: not for --help
-        from robotdesc.linting.targets import LintTarget
 
         check_cli_arguments([LintTarget(os.path.abspath(source), config)], args)
     options = expand_options(ns, config.packages)  # the config's default args may go unused

@@ -178,10 +178,10 @@ def _with_cli_arguments(ns: argparse.Namespace, targets: list[LintTarget],
 def _note_skipped_kinematics(select: Sequence[str] | None) -> None:
     """Warn when --select names rules that need Pinocchio and it is not installed (a lint
     that only runs them by default says so with -v)."""
-    from robotdesc.rules.catalog import all_rules
-
     if not select or pinocchio_available():
         return
+    from robotdesc.rules.catalog import all_rules  # every rule module: only when selecting
+
     chosen = [rule.code for rule in all_rules() if rule.family == "kinematics"
               and best_match(select, rule.code, rule.name) > 1]
     if chosen:

@@ -11,7 +11,6 @@ import logging
 import os
 from collections.abc import Iterable, Iterator, Sequence
 
-from lxml import etree
 
 from robotdesc.cache_dir import read_regular_file
 from robotdesc.expansion.packages import enclosing_package
@@ -74,6 +73,8 @@ def read_package_files(source: str, package_dirs: Sequence[tuple[str, str]] = ()
 
 def named_controller_files(xml: bytes) -> tuple[str, ...]:
     """The `<parameters>` paths of the ros2_control simulator plugins in a description."""
+    from lxml import etree  # not on the path of a lint answered from the result cache
+
     parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
                              remove_comments=True, remove_pis=True)
     try:
