@@ -7,14 +7,27 @@ The root: `$ROBOTDESC_CACHE_DIR` if set (an empty value, "0", "off", "none", "fa
 
 An entry is used only when it is a regular file (opened without following a symlink and
 without blocking, then checked with fstat: a FIFO, device or symlink is never read), no
-larger than its cache's cap, and (checked by each cache) stored under the key asked for.
-Anything else is a miss: the value is recomputed and the entry rewritten.
+larger than its cache's cap, sealed by this user's cache key, and (checked by each cache)
+stored under the key asked for. Anything else is a miss: the value is recomputed and the
+entry rewritten.
+
+The seal: every entry starts with an HMAC-SHA256 of its bytes under a secret that is never
+kept in the cache folder: `$ROBOTDESC_CACHE_KEY` when set (a CI secret shared by the jobs
+that may share a cache), else 32 random bytes made once per user in
+`$XDG_STATE_HOME/robotdesc/cache.key` (`~/.local/state/robotdesc/cache.key`, mode 0600).
+A cache folder can be shared (a CI cache restored across branches, a folder others can
+write): an entry written by anyone without the secret, or copied from another machine, is
+a miss, never a result (docs/security.md, "Caches").
 """
 
 from __future__ import annotations
 
+import functools
+import hashlib
+import hmac
 import logging
 import os
+import secrets
 import stat
 from collections.abc import Mapping
 from pathlib import Path
@@ -96,10 +109,72 @@ def read_regular_file(path: str | os.PathLike[str], max_bytes: int) -> bytes | N
         os.close(handle)
 
 
+#: The first bytes of a sealed entry, before the HMAC's hex digits and a newline.
+SEAL_PREFIX = b"robotdesc-seal-1 "
+_SEAL_BYTES = len(SEAL_PREFIX) + 64 + 1
+
+
+def key_path(env: Mapping[str, str] | None = None) -> Path:
+    """Where this user's cache key is kept (never inside a cache folder)."""
+    env = os.environ if env is None else env
+    xdg = env.get("XDG_STATE_HOME", "").strip()
+    base = Path(xdg) if xdg else Path(env.get("HOME") or str(Path.home())) / ".local" / "state"
+    return base / "robotdesc" / "cache.key"
+
+
+@functools.lru_cache(maxsize=None)
+def _secret(configured: str | None, path: Path) -> bytes:
+    """The secret entries are sealed with (see the module's docstring)."""
+    if configured:
+        return hashlib.sha256(configured.encode("utf-8")).digest()
+    try:
+        stored = read_regular_file(path, 256)
+        if stored is None:
+            path.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+            temporary = path.with_name(f"{path.name}.{os.getpid()}.{secrets.token_hex(4)}")
+            handle = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+            try:
+                os.write(handle, secrets.token_hex(32).encode())
+            finally:
+                os.close(handle)
+            try:
+                os.link(temporary, path)  # the first writer wins; the others read its key
+            except FileExistsError:
+                pass
+            finally:
+                os.unlink(temporary)
+            stored = read_regular_file(path, 256)
+        if stored is not None and len(stored.strip()) >= 32:
+            return hashlib.sha256(stored.strip()).digest()
+    except OSError as error:
+        log.debug("no cache key at %s (%s): entries are sealed for this process only",
+                  path, error)
+    return secrets.token_bytes(32)
+
+
+def _seal_of(data: bytes) -> bytes:
+    secret = _secret(os.environ.get("ROBOTDESC_CACHE_KEY") or None, key_path())
+    return hmac.new(secret, data, hashlib.sha256).hexdigest().encode()
+
+
 def write_entry(path: str | os.PathLike[str], data: bytes) -> None:
-    """Store a cache entry atomically.
+    """Store a cache entry atomically, sealed (see the module's docstring).
 
     Raises:
         OSError: it could not be written (callers log and go on).
     """
-    write_atomically(path, data)
+    write_atomically(path, SEAL_PREFIX + _seal_of(data) + b"\n" + data)
+
+
+def read_entry(path: str | os.PathLike[str], max_bytes: int) -> bytes | None:
+    """The bytes of a cache entry written by `write_entry` under this user's key, or None:
+    absent, not a regular file, over `max_bytes`, unsealed or sealed by another key."""
+    raw = read_regular_file(path, max_bytes + _SEAL_BYTES)
+    if raw is None or not raw.startswith(SEAL_PREFIX) or len(raw) < _SEAL_BYTES:
+        return None
+    seal, data = raw[len(SEAL_PREFIX):_SEAL_BYTES - 1], raw[_SEAL_BYTES:]
+    if raw[_SEAL_BYTES - 1:_SEAL_BYTES] != b"\n" or not hmac.compare_digest(seal,
+                                                                            _seal_of(data)):
+        log.debug("%s not used: not sealed by this user's cache key", path)
+        return None
+    return data

@@ -45,7 +45,8 @@ class Canary:
 
     def env(self) -> dict[str, str]:
         return {"HOME": str(self.home), "ROBOTDESC_CANARY": self.token,
-                "ROBOTDESC_CACHE_DIR": str(self.home.parent / "cache")}
+                "ROBOTDESC_CACHE_DIR": str(self.home.parent / "cache"),
+                "XDG_STATE_HOME": str(self.home.parent / "state")}
 
     def run(self, *args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
         return robotdesc(*args, cwd=cwd or self.repo, env=self.env())
@@ -284,7 +285,7 @@ def test_a_planted_cache_entry_is_a_miss(tmp_path, tamper, monkeypatch):
     secret = tmp_path / "secret.txt"
     secret.write_text("TOPSECRET\n")
     top, entry = _stored_entry(tmp_path)
-    record = json.loads(entry.read_text())
+    record = json.loads(entry.read_bytes().split(b"\n", 1)[1])  # after the seal
     if tamper == "no-inputs":
         record["inputs"] = {}
     elif tamper == "foreign-file":
@@ -443,3 +444,19 @@ def test_forged_provenance_in_the_document_is_refused(canary, provenance):
     assert_refused(done)
     assert "invalid answer" in done.stderr
     canary.assert_silent(done)
+
+
+def test_an_expansion_entry_sealed_by_another_key_is_a_miss(tmp_path, monkeypatch):
+    """A shared or planted cache folder: entries written without this user's key are not
+    believed, however well-formed (issue 28, cache poisoning)."""
+    top, entry = _stored_entry(tmp_path)
+    calls = []
+    real = runner.run_worker
+    monkeypatch.setattr(runner, "run_worker", lambda *a, **k: calls.append(1) or real(*a, **k))
+    options = ExpandOptions(cache_dir=str(tmp_path / "cache"))
+    expand_file(top, options=options)
+    assert calls == []  # the entry as written is a hit
+    monkeypatch.setenv("ROBOTDESC_CACHE_KEY", "a fork's key")
+    data = entry.read_bytes()
+    expand_file(top, options=options)  # a miss under another key, and rewritten with it
+    assert calls == [1] and entry.read_bytes() != data

@@ -10,6 +10,7 @@ from pathlib import Path
 
 import pytest
 
+from robotdesc.cache_dir import read_entry, write_entry
 from robotdesc.cli import main
 from robotdesc.expansion import ExpandOptions
 from robotdesc.linting import parallel, result_cache
@@ -138,7 +139,9 @@ def _planted(tmp_path: Path, cache: Path, capsys: pytest.CaptureFixture[str]
     top = _robot(tmp_path)
     _lint(capsys, str(top))
     [entry] = _entries(cache)
-    return top, entry, json.loads(entry.read_text())
+    data = read_entry(entry, 1 << 24)
+    assert data is not None
+    return top, entry, json.loads(data)
 
 
 def _load(top: Path) -> LintResult | None:
@@ -147,7 +150,9 @@ def _load(top: Path) -> LintResult | None:
 
 
 def _rewrite(entry: Path, record: object) -> None:
-    entry.write_text(json.dumps(record))
+    """Rewrite the entry sealed with this user's key: what its checks must hold against
+    beyond the seal (an entry without a valid seal is a miss before any of them)."""
+    write_entry(entry, json.dumps(record).encode())
 
 
 def test_the_entry_as_written_is_a_hit(tmp_path: Path, cache: Path,
@@ -192,7 +197,7 @@ def test_a_planted_or_damaged_entry_is_a_miss(tmp_path: Path, cache: Path,
     elif damage == "not an object":
         record = [record]
     elif damage == "truncated":
-        entry.write_text(json.dumps(record)[:100])
+        write_entry(entry, json.dumps(record)[:100].encode())
         assert _load(top) is None
         return
     elif damage == "another key":
@@ -228,7 +233,7 @@ def test_an_entry_that_is_a_symlink_or_a_fifo_is_a_miss(
         tmp_path: Path, cache: Path, capsys: pytest.CaptureFixture[str]) -> None:
     top, entry, record = _planted(tmp_path, cache, capsys)
     real = tmp_path / "real.json"
-    real.write_text(json.dumps(record))
+    write_entry(real, json.dumps(record).encode())
     entry.unlink()
     entry.symlink_to(real)
     assert _load(top) is None
@@ -271,3 +276,18 @@ def test_the_key_follows_settings() -> None:
     assert result_cache.result_key("/r.urdf", config=None, args={}, variant=(), select=None,
                                    ignore=(), expand_options=ExpandOptions(
                                        cache_dir="/tmp/c", use_cache=False)) is None
+
+
+def test_an_entry_without_this_users_seal_is_a_miss(tmp_path: Path, cache: Path,
+                                                    capsys: pytest.CaptureFixture[str],
+                                                    monkeypatch: pytest.MonkeyPatch) -> None:
+    """A shared cache folder: an entry written under another key (another machine, a fork's
+    CI job, anyone who can write the folder but lacks the secret) never answers."""
+    top, entry, record = _planted(tmp_path, cache, capsys)
+    assert _load(top) is not None
+    entry.write_text(json.dumps(record))  # the same record, unsealed
+    assert _load(top) is None
+    monkeypatch.setenv("ROBOTDESC_CACHE_KEY", "another machine's secret")
+    _rewrite(entry, record)  # sealed with another key
+    monkeypatch.delenv("ROBOTDESC_CACHE_KEY")
+    assert _load(top) is None

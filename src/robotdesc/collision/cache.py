@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from robotdesc.cache_dir import read_regular_file, write_entry
+from robotdesc.cache_dir import read_entry, write_entry
 from robotdesc.collision.result import Finding, LinkOutcome, LinkReport, MeshPart, PrimitivePart
 from robotdesc.model.elements import Box, Capsule, Cylinder, Pose, Sphere
 
@@ -40,7 +40,7 @@ class CollisionCache:
 
     def get(self, key: str) -> LinkOutcome | None:
         path = self._path(key)
-        raw = read_regular_file(path, MAX_ENTRY_BYTES)
+        raw = read_entry(path, MAX_ENTRY_BYTES)
         if raw is None:
             return None
         try:

@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from robotdesc._version import code_id, module_stamp
-from robotdesc.cache_dir import read_regular_file, write_entry
+from robotdesc.cache_dir import read_entry, write_entry
 from robotdesc.digest import file_digest
 from robotdesc.expansion.result import Expanded, MacroRecursion, ResolvedPackage, decode_input_facts
 from robotdesc.source import Span
@@ -61,7 +61,7 @@ def load(cache_dir: Path | None, key: str, top: str) -> Expanded | None:
     if cache_dir is None:
         return None
     entry = _entry_path(cache_dir, key)
-    data = read_regular_file(entry, MAX_ENTRY_BYTES)
+    data = read_entry(entry, MAX_ENTRY_BYTES)
     if data is None:
         return None
     try:

@@ -44,7 +44,7 @@ from pathlib import Path
 from typing import Any
 
 from robotdesc._version import code_id, module_stamp
-from robotdesc.cache_dir import cache_folder, read_regular_file, write_entry
+from robotdesc.cache_dir import cache_folder, read_entry, write_entry
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.digest import file_digest
 from robotdesc.expansion import DEFAULT_ENV_ALLOWLIST
@@ -140,7 +140,7 @@ def load(key: CacheKey | None, target: str) -> LintResult | None:
     None on any miss (absent, malformed, stale, or the cache is off)."""
     if key is None:
         return None
-    raw = read_regular_file(key.path, MAX_ENTRY_BYTES)
+    raw = read_entry(key.path, MAX_ENTRY_BYTES)
     if raw is None:
         return None
     try:

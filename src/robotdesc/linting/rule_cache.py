@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from robotdesc._version import code_id, module_stamp
-from robotdesc.cache_dir import read_regular_file, write_entry
+from robotdesc.cache_dir import read_entry, write_entry
 from robotdesc.diagnostics import Finding, ValueChange
 from robotdesc.rules.registry import Rule
 from robotdesc.source import Provenance, Span
@@ -80,7 +80,7 @@ def load(cache_dir: Path | None, key: str,
     """
     if cache_dir is None:
         return None
-    raw = read_regular_file(cache_dir / "rules" / f"{key}.json", MAX_ENTRY_BYTES)
+    raw = read_entry(cache_dir / "rules" / f"{key}.json", MAX_ENTRY_BYTES)
     if raw is None:
         return None
     try:

@@ -27,7 +27,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
-from robotdesc.cache_dir import cache_root, read_regular_file, write_entry
+from robotdesc.cache_dir import cache_root, read_entry, write_entry
 from robotdesc.digest import file_digest
 from robotdesc.mesh.errors import MeshError, MeshErrorKind
 from robotdesc.mesh.properties import MassProperties
@@ -181,7 +181,7 @@ def _shard(root: str, digest: str) -> str:
 
 
 def _read_json(path: str) -> Any:
-    data = read_regular_file(path, MAX_ENTRY_BYTES)
+    data = read_entry(path, MAX_ENTRY_BYTES)
     if data is None:
         return None
     try:
