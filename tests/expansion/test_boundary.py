@@ -460,3 +460,16 @@ def test_an_expansion_entry_sealed_by_another_key_is_a_miss(tmp_path, monkeypatc
     data = entry.read_bytes()
     expand_file(top, options=options)  # a miss under another key, and rewritten with it
     assert calls == [1] and entry.read_bytes() != data
+
+
+def test_the_argument_check_reads_nothing_outside_the_package(canary):
+    """`name:=value` is checked before the lint by reading the includes statically: an
+    include that leads out of the package (`../`, a symlinked folder) is not read."""
+    top = _load_yaml_package(canary.repo, "'base'")
+    (top.parent / "keys").symlink_to(canary.home / ".ssh")
+    top.write_text(top.read_text().replace(
+        "<link", '<xacro:include filename="keys/id_test"/>\n'
+        '  <xacro:include filename="../../../.ssh/id_test"/>\n  <link'))
+    done = canary.run("lint", "--no-cache", str(top), "misspelt:=1")
+    assert done.returncode == 2
+    canary.assert_silent(done)

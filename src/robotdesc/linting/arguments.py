@@ -13,8 +13,11 @@ import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
+from robotdesc.cache_dir import read_regular_file
 from robotdesc.errors import InputError, UsageError
+from robotdesc.expansion.packages import enclosing_package
 from robotdesc.linting.targets import LintTarget, include_path, target_name, xacro_name
+from robotdesc.trust import real_within
 from robotdesc.xml_input import MAX_XML_FILE_BYTES, parse_xml
 
 #: `$(arg name)` or `xacro.arg('name')` anywhere in a file's text.
@@ -50,7 +53,12 @@ def declared_arguments(path: str, packages: Mapping[str, str] | None = None
             including file's own package is found by itself).
     """
     names: list[str] = []
-    todo, seen = [os.path.abspath(path)], set()
+    top = os.path.abspath(path)
+    found = enclosing_package(top)
+    # read only inside the description's packages: never a file a symlink or `../` leads to
+    roots = tuple(os.path.realpath(folder) for folder in (
+        str(found[1]) if found else os.path.dirname(top), *(packages or {}).values()))
+    todo, seen = [top], set()
     complete, xacro = True, path.endswith(".xacro")
     while todo:
         file = todo.pop()
@@ -60,11 +68,12 @@ def declared_arguments(path: str, packages: Mapping[str, str] | None = None
         seen.add(real)
         if len(seen) > _MAX_FILES:
             return DeclaredArguments(tuple(dict.fromkeys(names)), False, True)
+        data = read_regular_file(file, MAX_XML_FILE_BYTES) if real_within(file, roots) else None
         try:
-            with open(file, "rb") as handle:
-                data = handle.read(MAX_XML_FILE_BYTES + 1)
-            root = parse_xml(data, file)
-        except (OSError, InputError):  # the lint says what is wrong with it
+            root = parse_xml(data, file) if data is not None else None
+        except InputError:  # the lint says what is wrong with it
+            root = None
+        if data is None or root is None:
             complete = False
             continue
         names += [(read or called).decode("utf-8") for read, called in _ARG_READ.findall(data)]

@@ -33,7 +33,7 @@ from robotdesc.errors import InputError
 from robotdesc.expansion.packages import crawl_packages, enclosing_package
 from robotdesc.linting.matrix import Variant, matrix_variants, variant_label
 from robotdesc.source import Span
-from robotdesc.trust import leaves_tree
+from robotdesc.trust import leaves_tree, real_within
 
 if TYPE_CHECKING:
     from lxml import etree
@@ -392,10 +392,20 @@ def _makes_something(path: str, root: XmlElement, packages: dict[str, str], seen
         real = os.path.realpath(included)
         if real in seen:
             continue
+        if not real_within(included, _read_roots(path, packages)):
+            return True  # out of the packages (`../`, a symlink): not read, assumed a robot
         sub = _read_root(included)
         if sub is None or _makes_something(included, sub, packages, seen | {real}, depth + 1):
             return True
     return False
+
+
+def _read_roots(including: str, packages: dict[str, str]) -> tuple[str, ...]:
+    """Where a search may read an included file: the including file's package (or folder)
+    and the packages found under the searched folder."""
+    found = enclosing_package(including)
+    own = str(found[1]) if found else os.path.dirname(os.path.abspath(including))
+    return tuple(os.path.realpath(folder) for folder in (own, *packages.values()))
 
 
 def include_path(filename: str, including: str, packages: dict[str, str]) -> str | None:
