@@ -473,3 +473,13 @@ def test_the_argument_check_reads_nothing_outside_the_package(canary):
     done = canary.run("lint", "--no-cache", str(top), "misspelt:=1")
     assert done.returncode == 2
     canary.assert_silent(done)
+
+
+def test_a_forged_message_cannot_write_lines_or_escapes_of_its_own(canary):
+    path = hostile(canary.repo, forged({
+        "ok": False, "kind": "ExpansionError", "call_stack": [], "span": None,
+        "message": "bad\n::error file=x::forged\x1b]0;title\x07\x9b31m"}), disarm=True)
+    done = canary.run("lint", "--no-cache", str(path))
+    assert done.returncode == 2
+    assert "\n::error" not in done.stderr and "\x1b" not in done.stderr
+    assert "\x9b" not in done.stderr and "\x07" not in done.stderr

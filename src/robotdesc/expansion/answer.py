@@ -55,6 +55,16 @@ def invalid(path: Path, why: str) -> errors.InvalidAnswer:
                          "refused the result", Span(str(path)))
 
 
+#: Control characters (C0 but tab, DEL, C1) in a message from the worker, shown as spaces:
+#: no terminal escape and no line of its own (a forged CI workflow command) reaches a log.
+_CONTROLS = {c: " " for c in [*range(0, 9), *range(10, 32), 127, *range(128, 160)]}
+
+
+def printable(text: str) -> str:
+    """`text` with control characters (newlines among them) replaced by spaces."""
+    return text.translate(_CONTROLS)
+
+
 def _text(value: object, what: str, path: Path, limit: int = MAX_TEXT) -> str:
     if not isinstance(value, str) or len(value) > limit:
         raise invalid(path, f"{what} is not text of at most {limit} characters")
@@ -111,7 +121,7 @@ def parse_failure(answer: dict[str, object], top: Path) -> tuple[errors.InputErr
     kind = _text(answer.get("kind"), "kind", top, 64)
     if kind not in FAILURE_KINDS:
         raise invalid(top, "an unknown failure kind")
-    message = _text(answer.get("message"), "message", top)
+    message = printable(_text(answer.get("message"), "message", top))
     span = reader.span(answer.get("span"), "span") or Span(str(top))
     chain = reader.spans(answer.get("call_stack", []), "call_stack")
     if kind == "InternalError":
