@@ -34,7 +34,7 @@ from robotdesc.linting.baseline import (
 )
 from robotdesc.linting.inputs import run_inputs
 from robotdesc.linting.result import LintFailure, LintResult
-from robotdesc.linting.select import best_match, check_selectors
+from robotdesc.rules.select import best_match, check_selectors
 from robotdesc.linting.targets import Discovery, LintTarget, discover_targets, target_name
 from robotdesc.output import RunInputs, check_output, write_output
 from robotdesc.progress import progress_for

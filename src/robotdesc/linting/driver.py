@@ -19,7 +19,7 @@ from robotdesc.expansion import Expanded, ExpandOptions, expand_file
 from robotdesc.linting import rule_cache
 from robotdesc.linting.package_reader import named_controller_files, read_package_files
 from robotdesc.linting.result import LintResult
-from robotdesc.linting.select import is_selected, select_rules
+from robotdesc.rules.select import is_selected, select_rules
 from robotdesc.linting.suppress import Suppression, apply_suppressions, scan_files, unused_codes
 from robotdesc.mesh.context import MeshContext
 from robotdesc.model.elements import Robot
