@@ -19,11 +19,11 @@ from robotdesc.expansion import Expanded, ExpandOptions, expand_file
 from robotdesc.linting import rule_cache
 from robotdesc.linting.package_reader import named_controller_files, read_package_files
 from robotdesc.linting.result import LintResult
-from robotdesc.rules.select import is_selected, select_rules
 from robotdesc.linting.suppress import Suppression, apply_suppressions, scan_files, unused_codes
 from robotdesc.mesh.context import MeshContext
 from robotdesc.model.elements import Robot
 from robotdesc.rules.registry import ExpansionFacts, Rule, RuleContext, SourceDocument, run_rule
+from robotdesc.rules.select import is_selected, select_rules
 from robotdesc.source import Provenance, Span
 
 log = logging.getLogger(__name__)
@@ -183,7 +183,7 @@ def _diagnostic(rule: Rule, severity: Severity, finding: Finding, fallback: Prov
     return Diagnostic(code=rule.code, name=rule.name, severity=severity,
                       message=finding.message, where=finding.where or fallback,
                       element=finding.element, fix=finding.fix, target=target,
-                      changes=finding.changes)
+                      changes=finding.changes, unfixable=finding.unfixable)
 
 
 def _unused_findings(suppressions: Iterable[Suppression],
