@@ -21,6 +21,7 @@ from dataclasses import dataclass
 from typing import Any, Callable, Mapping, Sequence
 
 from robotdesc.errors import InputError, OptionError, UsageError, WorkerCrashed
+from robotdesc.expansion import ExpandOptions
 from robotdesc.linting.driver import lint_file
 from robotdesc.linting import result_cache
 from robotdesc.linting.inputs import meshes_resolve, run_inputs
@@ -53,7 +54,8 @@ def effective_jobs(jobs: int) -> int:
 
 
 def lint_targets(targets: Sequence[LintTarget], *, args: Mapping[str, str] | None = None,
-                 expand_options: Any = None, select: Sequence[str] | None = None,
+                 expand_options: ExpandOptions | None = None,
+                 select: Sequence[str] | None = None,
                  ignore: Sequence[str] = (), jobs: int = 1, scheduler: str | None = None,
                  on_done: Callable[[int], None] | None = None) -> list[Outcome]:
     """Lint every target; one `LintResult` or `LintFailure` per target, in target order.
@@ -168,7 +170,7 @@ def _lint_task(item: tuple[Any, ...]) -> Outcome | _Crash:
     return _lint_one(*item)
 
 
-def _key(target: LintTarget, args: Mapping[str, str], expand_options: Any,
+def _key(target: LintTarget, args: Mapping[str, str], expand_options: ExpandOptions | None,
          select: Sequence[str] | None, ignore: Sequence[str]) -> result_cache.CacheKey | None:
     """The whole-result cache key of one target (its own settings, as `_lint_one` lints)."""
     return result_cache.result_key(
@@ -177,7 +179,8 @@ def _key(target: LintTarget, args: Mapping[str, str], expand_options: Any,
         expand_options=expand_options)
 
 
-def cached_result(target: LintTarget, args: Mapping[str, str], expand_options: Any,
+def cached_result(target: LintTarget, args: Mapping[str, str],
+                  expand_options: ExpandOptions | None,
                   select: Sequence[str] | None, ignore: Sequence[str]) -> LintResult | None:
     """The stored result of `target` when none of its inputs changed (else None)."""
     hit = result_cache.load(_key(target, args, expand_options, select, ignore), target.path)
@@ -187,7 +190,8 @@ def cached_result(target: LintTarget, args: Mapping[str, str], expand_options: A
     return dataclasses.replace(hit, variant=target.variant)
 
 
-def _lint_one(target: LintTarget, args: dict[str, str], expand_options: Any, select: Any,
+def _lint_one(target: LintTarget, args: dict[str, str], expand_options: ExpandOptions | None,
+              select: Sequence[str] | None,
               ignore: tuple[str, ...], keep_exceptions: bool = False) -> Outcome | _Crash:
     """Lint one target; input errors become failures, bugs become `_Crash` in a worker."""
     try:
@@ -201,7 +205,8 @@ def _lint_one(target: LintTarget, args: dict[str, str], expand_options: Any, sel
     return dataclasses.replace(result, expanded=None, robot=None)
 
 
-def lint_target(target: LintTarget, args: Mapping[str, str], expand_options: Any,
+def lint_target(target: LintTarget, args: Mapping[str, str],
+                expand_options: ExpandOptions | None,
                 select: Sequence[str] | None, ignore: Sequence[str]) -> LintResult:
     """Lint one target (not asking the result cache) and store its result there; the result
     keeps its expansion and model, and knows its `inputs`.
