@@ -24,7 +24,8 @@ from robotdesc.errors import InputError, OptionError, UsageError, WorkerCrashed
 from robotdesc.expansion import ExpandOptions
 from robotdesc.linting.driver import lint_file
 from robotdesc.linting import result_cache
-from robotdesc.linting.inputs import meshes_resolve, run_inputs
+from robotdesc.expansion.packages import package_lookup
+from robotdesc.linting.inputs import inputs_locator, meshes_resolve, run_inputs
 from robotdesc.linting.result import LintFailure, LintResult
 from robotdesc.linting.targets import LintTarget
 
@@ -216,21 +217,27 @@ def lint_target(target: LintTarget, args: Mapping[str, str],
     """
     log.info("linting %s", target.name())
     started_ns = time.time_ns()
-    result = lint_file(target.path, target.config, args={**dict(target.args), **args},
-                       expand_options=expand_options, select=select, ignore=ignore)
     package_paths = tuple(getattr(expand_options, "package_paths", ()))
     package_map = tuple(getattr(expand_options, "package_map", ())) \
         + tuple(target.config.packages)
+    # the one package lookup of this target: its rules' meshes and its inputs resolve with it
+    find_package = package_lookup(os.path.abspath(target.path), package_paths, package_map)
+    result = lint_file(target.path, target.config, args={**dict(target.args), **args},
+                       expand_options=expand_options, select=select, ignore=ignore,
+                       find_package=find_package)
+    locator = None if result.robot is None else \
+        inputs_locator(result.robot, find_package=find_package)
     inputs = run_inputs(result.target, config_path=result.config_path,
                         expanded=result.expanded, robot=result.robot,
-                        package_paths=package_paths, package_map=package_map)
+                        package_paths=package_paths, package_map=package_map, locator=locator)
     result = dataclasses.replace(result, variant=target.variant, inputs=inputs)
     result_cache.store(_key(target, args, expand_options, select, tuple(ignore)),
                        dataclasses.replace(result, expanded=None, robot=None),
                        started_ns=started_ns,
                        env_names=[used.name for used in
                                   getattr(result.expanded, "env_defaults", ())],
-                       complete=meshes_resolve(result.robot, package_paths, package_map))
+                       complete=meshes_resolve(result.robot, package_paths, package_map,
+                                               locator=locator))
     return result
 
 
