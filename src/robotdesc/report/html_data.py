@@ -11,9 +11,12 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from robotdesc.errors import UsageError
+from robotdesc.expansion.packages import package_lookup
 from robotdesc.inertia.table import inertia_table
 from robotdesc.linting.verdict import mark_rows, result_verdict
 from robotdesc.mesh.context import MeshContext
+from robotdesc.mesh.locate import MeshLocator
+from robotdesc.mesh.resolve import PackageLookup
 from robotdesc.mesh.settings import MeshSettings
 from robotdesc.model.elements import Robot
 from robotdesc.view.scene import Scene
@@ -85,12 +88,12 @@ def collect_report(result: LintResult, *, package_paths: Sequence[str] = (),
         raise UsageError(f"{result.target}: a report needs a lint result that kept its model "
                          "(robotdesc.lint_file keeps it)")
     notes: list[str] = []
-    scene = build_scene(robot, joint_values, package_paths=tuple(package_paths),
-                        package_map=tuple(package_map),
+    # the one package lookup of the report: the 3D view and the inertia table share it
+    find_package = package_lookup(result.target, tuple(package_paths), tuple(package_map))
+    scene = build_scene(robot, joint_values, meshes=MeshLocator(robot, find_package),
                         max_faces=max_faces or DEFAULT_MAX_FACES) if view else None
     settings = mesh_settings or MeshSettings()
-    rows = _inertia_rows(robot, result.target, settings, package_paths, package_map,
-                         result_verdict(result))
+    rows = _inertia_rows(robot, result.target, settings, find_package, result_verdict(result))
     if scene is not None and scene.problems:
         notes.append(f"{len(scene.problems)} geometries could not be shown in the 3D view")
     collision = None
@@ -105,10 +108,8 @@ def collect_report(result: LintResult, *, package_paths: Sequence[str] = (),
 
 
 def _inertia_rows(robot: Robot, target: str, settings: MeshSettings,
-                  package_paths: Sequence[str],
-                  package_map: Sequence[tuple[str, str]],
+                  find_package: PackageLookup,
                   verdict: Mapping[str, tuple[str, ...]]) -> tuple[InertiaRow, ...]:
     """The inertia table, each row marked with lint's suppressed findings on its link."""
-    meshes = MeshContext.for_file(robot, target, settings, tuple(package_paths),
-                                  tuple(package_map))
+    meshes = MeshContext.for_file(robot, target, settings, find_package=find_package)
     return tuple(mark_rows(inertia_table(robot, meshes), verdict))
