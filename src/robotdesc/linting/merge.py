@@ -13,6 +13,7 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass
+
 from robotdesc.diagnostics import Diagnostic
 from robotdesc.linting.matrix import variant_label
 from robotdesc.linting.result import LintResult

@@ -10,7 +10,7 @@ import html
 import math
 import os
 from collections.abc import Iterable, Sequence
-from typing import TYPE_CHECKING, Any, TypeVar
+from typing import TYPE_CHECKING, TypeVar
 
 from robotdesc._version import __version__
 from robotdesc.diagnostics import Diagnostic

@@ -8,6 +8,7 @@ when IPython is running, so a notebook shows a table where a script sees `repr()
 from __future__ import annotations
 
 import sys
+
 from robotdesc.report.html import collision_result_html, inertia_rows_html
 
 #: (module, class name) -> the function that draws it as HTML.

@@ -18,8 +18,8 @@ from robotdesc.linting.merge import merge_findings
 from robotdesc.report.table import render_table
 
 if TYPE_CHECKING:
-    from robotdesc.linting.result import LintResult
     from robotdesc.diagnostics import Severity
+    from robotdesc.linting.result import LintResult
 
 
 @dataclass(frozen=True)
