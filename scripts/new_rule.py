@@ -166,8 +166,7 @@ def main(argv: list[str] | None = None) -> int:
     if ns.fix:
         print(f"{ns.code} is {ns.fix} in rules/fixes.py: give each Finding its fix text and its "
               "changes (diagnostics.ValueChange: element, attribute, new value); the edit "
-              "engine writes them (a FIXERS entry in linting/fix/changes.py only when the rule "
-              "cannot know the value)")
+              "engine writes them (or unfixable=\"why not\" when a finding cannot be fixed)")
     print("then write the check, and: python -m robotdesc.rules.docs > docs/rules.md && "
           "python -m robotdesc.rules.docs --index")
     return 0

@@ -219,8 +219,8 @@ def lint(path: str, args: Mapping[str, str] | None = None, *,
     from robotdesc.config import load_config
     from robotdesc.expansion import ExpandOptions
     from robotdesc.linting.driver import lint_file
-    from robotdesc.linting.select import check_selectors
     from robotdesc.rules.catalog import all_rules
+    from robotdesc.rules.select import check_selectors
 
     check_selectors(select or (), all_rules(), "select")
     check_selectors(ignore, all_rules(), "ignore")

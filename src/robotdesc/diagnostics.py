@@ -56,6 +56,8 @@ class Finding:
         fix: suggested replacement text (for example a corrected `<inertial>` block).
         changes: the fix as data: the attribute values to set (`lint --fix` applies them
             when the rule's code is in rules/fixes.py's FIXABLE).
+        unfixable: why the rule's fix cannot be made for this finding (e.g. "'/opt/a.stl'
+            is in no ROS package"); empty when it can, or the rule has no fix.
     """
 
     message: str
@@ -63,6 +65,7 @@ class Finding:
     element: str = ""
     fix: str | None = None
     changes: tuple[ValueChange, ...] = ()
+    unfixable: str = ""
 
 
 @dataclass(frozen=True)
@@ -79,6 +82,7 @@ class Diagnostic:
         fix: suggested replacement text, if any.
         target: the linted file (the top-level xacro/URDF).
         changes: the fix as data (the rule's `Finding.changes`).
+        unfixable: why the fix cannot be made (the rule's `Finding.unfixable`).
     """
 
     code: str
@@ -90,6 +94,7 @@ class Diagnostic:
     fix: str | None = None
     target: str = ""
     changes: tuple[ValueChange, ...] = ()
+    unfixable: str = ""
 
     def sort_key(self) -> tuple[str, int, str, str]:
         span = self.where.span if self.where else None

@@ -14,6 +14,8 @@ from view.browser import drawn_pixels, dump_dom, require_chromium, screenshot
 from view.robots import write_demo_package
 
 import robotdesc
+from robotdesc.errors import UsageError
+from robotdesc.linting.result import LintResult
 from robotdesc.report import html as html_module
 from robotdesc.report import html_plots
 from robotdesc.report.html import _merge_alike, render_html_report
@@ -170,3 +172,8 @@ def test_the_header_counts_rules_as_robotdesc_rules_lists_them(report: str) -> N
 
     ran, total = map(int, re.search(r"(\d+) of (\d+) rules ran", report).groups())
     assert total == len(all_rules()) and 0 < ran < total  # opt-in rules did not run
+
+
+def test_a_result_without_its_model_is_a_usage_error() -> None:
+    with pytest.raises(UsageError, match="kept its model"):
+        collect_report(LintResult("/ws/arm.urdf", ()), view=False)

@@ -15,10 +15,10 @@ from mesh.builders import box_triangles, write_collada
 
 import robotdesc
 from robotdesc.diagnostics import Severity
-from robotdesc.linting.select import select_rules
 from robotdesc.model.parse import parse_urdf
 from robotdesc.rules.catalog import all_rules, get_rule
 from robotdesc.rules.registry import RuleContext, run_rule
+from robotdesc.rules.select import select_rules
 
 REPO = Path(__file__).resolve().parents[2]
 ENGINEER = REPO / "robots" / "engineer_description"

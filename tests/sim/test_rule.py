@@ -10,9 +10,9 @@ import pytest
 from support import REPO
 
 import robotdesc
-from robotdesc.linting.select import select_rules
 from robotdesc.rules.catalog import all_rules, get_rule
 from robotdesc.rules.registry import RuleContext, run_rule
+from robotdesc.rules.select import select_rules
 
 from .sim_support import FIXTURES
 

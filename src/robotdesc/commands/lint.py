@@ -34,13 +34,13 @@ from robotdesc.linting.baseline import (
 )
 from robotdesc.linting.inputs import run_inputs
 from robotdesc.linting.result import LintFailure, LintResult
-from robotdesc.linting.select import best_match, check_selectors
 from robotdesc.linting.targets import Discovery, LintTarget, discover_targets, target_name
 from robotdesc.output import RunInputs, check_output, write_output
 from robotdesc.progress import progress_for
 from robotdesc.report.formats import FORMAT_NAMES, FORMATS, render_report
 from robotdesc.report.statistics import render_statistics_json, render_statistics_text
 from robotdesc.report.text import render_failure, render_text, write_text
+from robotdesc.rules.select import best_match, check_selectors
 from robotdesc.source import Span
 
 if TYPE_CHECKING:

@@ -13,8 +13,8 @@ from robotdesc.config.coerce import coerce
 from robotdesc.config.locate import Locator
 from robotdesc.config.schema import KEYS, Config, SimSettings, TargetSpec
 from robotdesc.diagnostics import Severity
-from robotdesc.linting.select import find_rule, unknown_selectors
 from robotdesc.mesh.settings import MeshSettings
+from robotdesc.rules.select import find_rule, unknown_selectors
 from robotdesc.trust import is_broad_folder, real_within
 
 if TYPE_CHECKING:

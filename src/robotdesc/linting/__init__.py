@@ -1,6 +1,6 @@
 """Linting: run the selected rules over a description and collect diagnostics.
 
-`lint_file` (driver.py) is the pipeline; select.py chooses rules, suppress.py reads inline
+`lint_file` (driver.py) is the pipeline; rules/select.py chooses rules, suppress.py reads inline
 `<!-- robotdesc: ignore CODE -->` comments, targets.py turns command-line paths into
 targets (matrix.py: argument variants), parallel.py lints many targets across processes,
 baseline.py hides findings already recorded.

@@ -19,11 +19,12 @@ from robotdesc.expansion import Expanded, ExpandOptions, expand_file
 from robotdesc.linting import rule_cache
 from robotdesc.linting.package_reader import named_controller_files, read_package_files
 from robotdesc.linting.result import LintResult
-from robotdesc.linting.select import is_selected, select_rules
 from robotdesc.linting.suppress import Suppression, apply_suppressions, scan_files, unused_codes
 from robotdesc.mesh.context import MeshContext
+from robotdesc.mesh.resolve import PackageLookup
 from robotdesc.model.elements import Robot
 from robotdesc.rules.registry import ExpansionFacts, Rule, RuleContext, SourceDocument, run_rule
+from robotdesc.rules.select import is_selected, select_rules
 from robotdesc.source import Provenance, Span
 
 log = logging.getLogger(__name__)
@@ -36,7 +37,8 @@ __all__ = ["LintResult", "RuleCrashed", "lint_expanded", "lint_file"]
 def lint_file(path: str, config: Config | None = None, *,
               args: Mapping[str, str] | None = None,
               expand_options: ExpandOptions | None = None,
-              select: Sequence[str] | None = None, ignore: Sequence[str] = ()) -> LintResult:
+              select: Sequence[str] | None = None, ignore: Sequence[str] = (),
+              find_package: PackageLookup | None = None) -> LintResult:
     """Lint one description (.urdf, .urdf.xacro, .xacro).
 
     Args:
@@ -47,6 +49,9 @@ def lint_file(path: str, config: Config | None = None, *,
             `package_map` after the explicit ones.
         select: rule selectors that replace the config's `select`.
         ignore: rule selectors added to the config's `ignore`.
+        find_package: the run's package lookup (`expansion.packages.package_lookup` of
+            `path`, `--package-path` and the package map with the config's packages), when
+            the caller built it to use it again; None: built here when a rule needs meshes.
 
     Raises:
         InputError: the file could not be expanded or parsed (exit code 2).
@@ -61,12 +66,13 @@ def lint_file(path: str, config: Config | None = None, *,
     options = dataclasses.replace(options, unchecked_args=tuple(
         name for name, _ in config.args if name not in (args or {})))
     expanded = expand_file(target, merged_args, options=options)
-    return lint_expanded(target, expanded, config, options, select=select, ignore=ignore)
+    return lint_expanded(target, expanded, config, options, select=select, ignore=ignore,
+                         find_package=find_package)
 
 
 def lint_expanded(target: str, expanded: Expanded, config: Config, options: ExpandOptions, *,
-                  select: Sequence[str] | None = None, ignore: Sequence[str] = ()
-                  ) -> LintResult:
+                  select: Sequence[str] | None = None, ignore: Sequence[str] = (),
+                  find_package: PackageLookup | None = None) -> LintResult:
     """Lint an expansion of `target` (parse, rules, ignores, suppressions): `lint_file`
     after its expansion, also for a document the caller changed (the language server's
     edit of a literal value).
@@ -77,7 +83,7 @@ def lint_expanded(target: str, expanded: Expanded, config: Config, options: Expa
         config: the settings that apply.
         options: the expansion settings it was made with (`package_map` with the config's
             packages: the meshes resolve through them).
-        select, ignore: as `lint_file`.
+        select, ignore, find_package: as `lint_file`.
 
     Raises:
         InputError: the document could not be parsed (exit code 2).
@@ -98,7 +104,7 @@ def lint_expanded(target: str, expanded: Expanded, config: Config, options: Expa
     fallback = robot.where or Provenance(Span(expanded.source))
     document = SourceDocument(expanded.xml, expanded.source, tuple(expanded.files))
 
-    meshes = _mesh_context(rules, robot, target, config, options)
+    meshes = _mesh_context(rules, robot, target, config, options, find_package)
     package = (read_package_files(target, tuple((p.name, p.path) for p in expanded.packages),
                                   named_controller_files(expanded.xml))
                if any("package" in rule.needs for rule in rules) else None)
@@ -168,14 +174,15 @@ def _mesh_files(context: RuleContext) -> list[str]:
 
 
 def _mesh_context(rules: Sequence[Rule], robot: Robot, target: str, config: Config,
-                  options: ExpandOptions) -> MeshContext | None:
+                  options: ExpandOptions, find_package: PackageLookup | None
+                  ) -> MeshContext | None:
     """The mesh access for rules that need meshes; None otherwise (nothing is read before a
     rule asks)."""
     if not any("meshes" in rule.needs for rule in rules):
         return None
     return MeshContext.for_file(robot, target, config.meshes, tuple(options.package_paths),
                                 tuple(options.package_map), use_cache=options.use_cache,
-                                cache_dir=options.cache_dir)
+                                cache_dir=options.cache_dir, find_package=find_package)
 
 
 def _diagnostic(rule: Rule, severity: Severity, finding: Finding, fallback: Provenance,
@@ -183,7 +190,7 @@ def _diagnostic(rule: Rule, severity: Severity, finding: Finding, fallback: Prov
     return Diagnostic(code=rule.code, name=rule.name, severity=severity,
                       message=finding.message, where=finding.where or fallback,
                       element=finding.element, fix=finding.fix, target=target,
-                      changes=finding.changes)
+                      changes=finding.changes, unfixable=finding.unfixable)
 
 
 def _unused_findings(suppressions: Iterable[Suppression],

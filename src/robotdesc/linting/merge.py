@@ -13,10 +13,10 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
 
 from robotdesc.diagnostics import Diagnostic
 from robotdesc.linting.matrix import variant_label
+from robotdesc.linting.result import LintResult
 
 #: A linted variant: its xacro arguments (config target and command line) or, without
 #: arguments, its matrix variant; () is the file's defaults.
@@ -99,9 +99,9 @@ def run_label(args: RunArgs, matrix: RunArgs = ()) -> str:
     return variant_label(args) if args else "[default arguments]"
 
 
-def run_args(result: Any) -> RunArgs:
+def run_args(result: LintResult) -> RunArgs:
     """The identity of a linted variant: its arguments, else its matrix variant."""
-    return tuple(getattr(result, "args", ()) or getattr(result, "variant", ()))
+    return tuple(result.args or result.variant)
 
 
 def element_name(element: str) -> str:
@@ -126,7 +126,7 @@ def finding_key(diagnostic: Diagnostic, target: str) -> tuple[object, ...]:
             message_key(diagnostic))
 
 
-def merge_findings(results: Sequence[Any]) -> list[MergedFinding]:
+def merge_findings(results: Sequence[LintResult]) -> list[MergedFinding]:
     """The findings of `results` (`LintResult`s), merged per target and source location, in
     the order of their first occurrence."""
     runs: dict[str, int] = {}

@@ -21,9 +21,11 @@ from dataclasses import dataclass
 from typing import Any, Callable, Mapping, Sequence
 
 from robotdesc.errors import InputError, OptionError, UsageError, WorkerCrashed
+from robotdesc.expansion import ExpandOptions
 from robotdesc.linting.driver import lint_file
 from robotdesc.linting import result_cache
-from robotdesc.linting.inputs import meshes_resolve, run_inputs
+from robotdesc.expansion.packages import package_lookup
+from robotdesc.linting.inputs import inputs_locator, meshes_resolve, run_inputs
 from robotdesc.linting.result import LintFailure, LintResult
 from robotdesc.linting.targets import LintTarget
 
@@ -53,7 +55,8 @@ def effective_jobs(jobs: int) -> int:
 
 
 def lint_targets(targets: Sequence[LintTarget], *, args: Mapping[str, str] | None = None,
-                 expand_options: Any = None, select: Sequence[str] | None = None,
+                 expand_options: ExpandOptions | None = None,
+                 select: Sequence[str] | None = None,
                  ignore: Sequence[str] = (), jobs: int = 1, scheduler: str | None = None,
                  on_done: Callable[[int], None] | None = None) -> list[Outcome]:
     """Lint every target; one `LintResult` or `LintFailure` per target, in target order.
@@ -168,7 +171,7 @@ def _lint_task(item: tuple[Any, ...]) -> Outcome | _Crash:
     return _lint_one(*item)
 
 
-def _key(target: LintTarget, args: Mapping[str, str], expand_options: Any,
+def _key(target: LintTarget, args: Mapping[str, str], expand_options: ExpandOptions | None,
          select: Sequence[str] | None, ignore: Sequence[str]) -> result_cache.CacheKey | None:
     """The whole-result cache key of one target (its own settings, as `_lint_one` lints)."""
     return result_cache.result_key(
@@ -177,7 +180,8 @@ def _key(target: LintTarget, args: Mapping[str, str], expand_options: Any,
         expand_options=expand_options)
 
 
-def cached_result(target: LintTarget, args: Mapping[str, str], expand_options: Any,
+def cached_result(target: LintTarget, args: Mapping[str, str],
+                  expand_options: ExpandOptions | None,
                   select: Sequence[str] | None, ignore: Sequence[str]) -> LintResult | None:
     """The stored result of `target` when none of its inputs changed (else None)."""
     hit = result_cache.load(_key(target, args, expand_options, select, ignore), target.path)
@@ -187,7 +191,8 @@ def cached_result(target: LintTarget, args: Mapping[str, str], expand_options: A
     return dataclasses.replace(hit, variant=target.variant)
 
 
-def _lint_one(target: LintTarget, args: dict[str, str], expand_options: Any, select: Any,
+def _lint_one(target: LintTarget, args: dict[str, str], expand_options: ExpandOptions | None,
+              select: Sequence[str] | None,
               ignore: tuple[str, ...], keep_exceptions: bool = False) -> Outcome | _Crash:
     """Lint one target; input errors become failures, bugs become `_Crash` in a worker."""
     try:
@@ -201,7 +206,8 @@ def _lint_one(target: LintTarget, args: dict[str, str], expand_options: Any, sel
     return dataclasses.replace(result, expanded=None, robot=None)
 
 
-def lint_target(target: LintTarget, args: Mapping[str, str], expand_options: Any,
+def lint_target(target: LintTarget, args: Mapping[str, str],
+                expand_options: ExpandOptions | None,
                 select: Sequence[str] | None, ignore: Sequence[str]) -> LintResult:
     """Lint one target (not asking the result cache) and store its result there; the result
     keeps its expansion and model, and knows its `inputs`.
@@ -211,21 +217,27 @@ def lint_target(target: LintTarget, args: Mapping[str, str], expand_options: Any
     """
     log.info("linting %s", target.name())
     started_ns = time.time_ns()
-    result = lint_file(target.path, target.config, args={**dict(target.args), **args},
-                       expand_options=expand_options, select=select, ignore=ignore)
     package_paths = tuple(getattr(expand_options, "package_paths", ()))
     package_map = tuple(getattr(expand_options, "package_map", ())) \
         + tuple(target.config.packages)
+    # the one package lookup of this target: its rules' meshes and its inputs resolve with it
+    find_package = package_lookup(os.path.abspath(target.path), package_paths, package_map)
+    result = lint_file(target.path, target.config, args={**dict(target.args), **args},
+                       expand_options=expand_options, select=select, ignore=ignore,
+                       find_package=find_package)
+    locator = None if result.robot is None else \
+        inputs_locator(result.robot, find_package=find_package)
     inputs = run_inputs(result.target, config_path=result.config_path,
                         expanded=result.expanded, robot=result.robot,
-                        package_paths=package_paths, package_map=package_map)
+                        package_paths=package_paths, package_map=package_map, locator=locator)
     result = dataclasses.replace(result, variant=target.variant, inputs=inputs)
     result_cache.store(_key(target, args, expand_options, select, tuple(ignore)),
                        dataclasses.replace(result, expanded=None, robot=None),
                        started_ns=started_ns,
                        env_names=[used.name for used in
                                   getattr(result.expanded, "env_defaults", ())],
-                       complete=meshes_resolve(result.robot, package_paths, package_map))
+                       complete=meshes_resolve(result.robot, package_paths, package_map,
+                                               locator=locator))
     return result
 
 

@@ -5,10 +5,12 @@ from __future__ import annotations
 import html
 import os
 from dataclasses import dataclass
-from typing import Any
 
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.errors import InputError, RuleCrashed
+from robotdesc.expansion.result import Expanded
+from robotdesc.model.elements import Robot
+from robotdesc.output import RunInputs
 
 __all__ = ["LintFailure", "LintResult", "RuleCrashed"]  # RuleCrashed: robotdesc.errors
 
@@ -23,8 +25,8 @@ class LintResult:
     Attributes:
         target: the linted file (absolute path).
         diagnostics: what was found, sorted by file, line and code.
-        expanded: the expansion (`robotdesc.expansion.result.Expanded`).
-        robot: the parsed model (`robotdesc.model.elements.Robot`).
+        expanded: the expansion (None: dropped, e.g. read from the result cache).
+        robot: the parsed model (None: dropped).
         suppressed: how many findings inline comments suppressed.
         config_path: the config file that applied (None: defaults).
         rules_run: the codes of the rules that ran.
@@ -42,13 +44,13 @@ class LintResult:
 
     target: str
     diagnostics: tuple[Diagnostic, ...]
-    expanded: Any = None
-    robot: Any = None
+    expanded: Expanded | None = None
+    robot: Robot | None = None
     suppressed: int = 0
     config_path: str | None = None
     rules_run: tuple[str, ...] = ()
     variant: tuple[tuple[str, str], ...] = ()
-    inputs: Any = None
+    inputs: RunInputs | None = None
     args: tuple[tuple[str, str], ...] = ()
     suppressed_by_config: int = 0
     suppressed_by_baseline: int = 0

@@ -47,7 +47,7 @@ from robotdesc._version import code_id, module_stamp
 from robotdesc.cache_dir import cache_folder, read_entry, write_entry
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.digest import file_digest
-from robotdesc.expansion import DEFAULT_ENV_ALLOWLIST
+from robotdesc.expansion import DEFAULT_ENV_ALLOWLIST, ExpandOptions
 from robotdesc.linting.result import LintResult
 from robotdesc.output import RunInput, RunInputs
 from robotdesc.source import PassedValue, Provenance, Span
@@ -103,7 +103,7 @@ class CacheKey:
 
 def result_key(target: str, *, config: object, args: Mapping[str, str],
                variant: Sequence[tuple[str, str]], select: Sequence[str] | None,
-               ignore: Sequence[str], expand_options: Any) -> CacheKey | None:
+               ignore: Sequence[str], expand_options: ExpandOptions | None) -> CacheKey | None:
     """The key of one target's lint, or None when the cache is off for it (`--no-cache`,
     `ROBOTDESC_CACHE_DIR=off`, `--trusted`)."""
     options = expand_options
@@ -130,7 +130,7 @@ def result_key(target: str, *, config: object, args: Mapping[str, str],
     return CacheKey(folder, hashlib.sha256(text.encode()).hexdigest())
 
 
-def _allowed_env(options: Any) -> tuple[str, ...]:
+def _allowed_env(options: ExpandOptions | None) -> tuple[str, ...]:
     from_options = tuple(getattr(options, "env_allowlist", ()) or ())
     return tuple(sorted(set(DEFAULT_ENV_ALLOWLIST + from_options + RESOLVER_ENV)))
 

@@ -121,7 +121,7 @@ def _record(finding: Finding) -> FindingRecord:
     spans: list[SpanRecord | list[SpanRecord]] | None = None if where is None else \
         [_span_record(where.span), [_span_record(s) for s in where.macro_stack]]
     return {"message": finding.message, "element": finding.element, "fix": finding.fix,
-            "changes": changes, "where": spans}
+            "changes": changes, "unfixable": finding.unfixable, "where": spans}
 
 
 def _points_into(finding: Finding, sources: frozenset[str]) -> bool:
@@ -139,4 +139,5 @@ def _finding(item: dict[str, Any]) -> Finding:
         Span(*where[0]), tuple(Span(*s) for s in where[1]))
     changes = tuple(ValueChange(str(e), str(a), str(v), float(t))
                     for e, a, v, t in item.get("changes", []))
-    return Finding(item["message"], provenance, item["element"], item["fix"], changes)
+    return Finding(item["message"], provenance, item["element"], item["fix"], changes,
+                   str(item.get("unfixable", "")))

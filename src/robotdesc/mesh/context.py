@@ -135,10 +135,15 @@ class MeshContext:
     def for_file(cls, robot: Robot, target: str, settings: MeshSettings,
                  package_paths: tuple[str, ...] = (),
                  package_map: tuple[tuple[str, str], ...] = (), *, use_cache: bool = True,
-                 cache_dir: str | None = None) -> MeshContext:
+                 cache_dir: str | None = None,
+                 find_package: PackageLookup | None = None) -> MeshContext:
         """The context for a linted file: the expansion's package chain and the mesh cache
-        (off with `use_cache` False, the run's `--no-cache`, or the config's `cache`)."""
-        find_package = package_lookup(target, package_paths, package_map)
+        (off with `use_cache` False, the run's `--no-cache`, or the config's `cache`).
+
+        `find_package`: the run's package lookup when the caller built it (then
+        `package_paths` and `package_map` are not read); else one is built here."""
+        if find_package is None:
+            find_package = package_lookup(target, package_paths, package_map)
         directory = cache_folder(settings.cache and use_cache, cache_dir)
         return cls(robot, settings, find_package, MeshCache(directory) if directory else None)
 

@@ -9,9 +9,12 @@ from __future__ import annotations
 import importlib
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING
 
 from robotdesc.diagnostics import Severity
+
+if TYPE_CHECKING:
+    from robotdesc.linting.result import LintFailure, LintResult
 
 
 @dataclass(frozen=True)
@@ -59,7 +62,7 @@ FORMATS: tuple[ReportFormat, ...] = (
 FORMAT_NAMES: tuple[str, ...] = tuple(f.name for f in FORMATS)
 
 
-def render_report(name: str, results: Sequence[Any], failures: Sequence[Any],
+def render_report(name: str, results: Sequence[LintResult], failures: Sequence[LintFailure],
                   fail_on: Severity) -> str:
     """The report of `results` and `failures` in the format called `name`.
 

@@ -11,13 +11,16 @@ from __future__ import annotations
 
 import os
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from robotdesc.diagnostics import Severity
 from robotdesc.linting.merge import MergedFinding, merge_findings
 from robotdesc.linting.targets import target_name
 from robotdesc.report.text import summary_line
 from robotdesc.source import Span, passed_sites
+
+if TYPE_CHECKING:
+    from robotdesc.linting.result import LintFailure, LintResult
 
 _COMMAND = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "notice"}
 
@@ -40,7 +43,7 @@ def workflow_command(command: str, message: str, **properties: Any) -> str:
     return f"::{command}{' ' + props if props else ''}::{escape_data(message)}"
 
 
-def render_github(results: Sequence[Any], failures: Sequence[Any] = (), *,
+def render_github(results: Sequence[LintResult], failures: Sequence[LintFailure] = (), *,
                   cwd: str | None = None) -> str:
     """Annotations for every finding (one per problem and source location, over variants and
     elements) and every file that could not be checked, then a summary line (text ending
@@ -74,7 +77,7 @@ def _annotation(finding: MergedFinding, root: str) -> str:
         title=f"{diagnostic.code} {diagnostic.name}")
 
 
-def _failure(failure: Any, root: str) -> str:
+def _failure(failure: LintFailure, root: str) -> str:
     error = failure.error
     span = getattr(error, "span", None)
     message = getattr(error, "message", str(error))

@@ -14,17 +14,20 @@ import json
 import os
 from collections import Counter
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from robotdesc.diagnostics import Severity
 from robotdesc.linting.merge import merge_findings, message_key
 from robotdesc.linting.targets import target_name
 
+if TYPE_CHECKING:
+    from robotdesc.linting.result import LintFailure, LintResult
+
 _SEVERITY = {Severity.ERROR: "major", Severity.WARNING: "minor", Severity.INFO: "info"}
 INPUT_ERROR_CHECK = "robotdesc-input-error"
 
 
-def render_gitlab(results: Sequence[Any], failures: Sequence[Any] = (), *,
+def render_gitlab(results: Sequence[LintResult], failures: Sequence[LintFailure] = (), *,
                   cwd: str | None = None) -> str:
     """The Code Quality report as JSON text ending with a newline."""
     root = os.path.abspath(cwd or os.getcwd())

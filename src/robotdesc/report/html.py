@@ -10,14 +10,19 @@ import html
 import math
 import os
 from collections.abc import Iterable, Sequence
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, TypeVar
 
 from robotdesc._version import __version__
+from robotdesc.diagnostics import Diagnostic
 from robotdesc.report.html_data import ReportData
 from robotdesc.report.html_plots import faces_plot, moments_plot, plots_available
 from robotdesc.rules.catalog import all_rules
 from robotdesc.view.findings import findings_by_link
 from robotdesc.view.html import view_fragment
+
+if TYPE_CHECKING:
+    from robotdesc.collision.result import CollisionResult
+    from robotdesc.inertia.table import InertiaRow
 
 STYLE = """
 body{font:14px/1.45 system-ui,sans-serif;color:#1d1f24;margin:0;background:#fafbfc}
@@ -49,7 +54,7 @@ white-space:pre-wrap;overflow-wrap:anywhere}
 """
 
 
-def _e(value: Any) -> str:
+def _e(value: object) -> str:
     return html.escape(str(value), quote=True)
 
 
@@ -61,7 +66,7 @@ def _vec(values: Sequence[float] | None) -> str:
     return "-" if values is None else " ".join(f"{v:.4g}" for v in values)
 
 
-def _location(diagnostic: Any) -> str:
+def _location(diagnostic: Diagnostic) -> str:
     return str(diagnostic.where.span) if diagnostic.where is not None else ""
 
 
@@ -75,9 +80,10 @@ def _table(head: Sequence[str], rows: Iterable[str], scroll: bool = False) -> st
 # --- sections -------------------------------------------------------------------------------
 
 
-def _rules_summary(diagnostics: Sequence[Any], per_link: dict[str, list[Any]]) -> str:
+def _rules_summary(diagnostics: Sequence[Diagnostic], per_link: dict[str, list[Diagnostic]]
+                   ) -> str:
     """One row per rule: how many findings, on how many links."""
-    by_code: dict[str, list[Any]] = {}
+    by_code: dict[str, list[Diagnostic]] = {}
     for d in diagnostics:
         by_code.setdefault(d.code, []).append(d)
     links_of: dict[str, set[str]] = {}
@@ -97,7 +103,7 @@ def _rules_summary(diagnostics: Sequence[Any], per_link: dict[str, list[Any]]) -
 
 def _findings_section(data: ReportData) -> str:
     result = data.result
-    per_link, others = findings_by_link(result.robot, result.diagnostics)
+    per_link, others = findings_by_link(data.robot, result.diagnostics)
     if not result.diagnostics:
         return '<p class="empty">No findings.</p>'
     groups = list(per_link.items())
@@ -131,7 +137,7 @@ def _inertia_section(data: ReportData) -> str:
     return inertia_rows_html(data.inertia_rows)
 
 
-def inertia_rows_html(rows: Sequence[Any]) -> str:
+def inertia_rows_html(rows: Sequence[InertiaRow]) -> str:
     """The inertia table (`robotdesc.inertia.table.InertiaRow`s) as HTML (also for Jupyter)."""
     if not rows:
         return '<p class="note">No link declares an inertial or has geometry.</p>'
@@ -200,7 +206,7 @@ def _collision_section(data: ReportData) -> str:
     return "\n".join(parts) or '<p class="note">No geometry.</p>'
 
 
-def collision_result_html(result: Any) -> str:
+def collision_result_html(result: CollisionResult) -> str:
     """A `CollisionResult` as an HTML heading, totals line and per-link table (also its
     Jupyter display)."""
     body = []
@@ -278,7 +284,7 @@ def _view_section(data: ReportData) -> str:
         return '<p class="note">The 3D view was not included.</p>'
     from robotdesc.view.encode import scene_document
 
-    per_link, _ = findings_by_link(data.result.robot, data.result.diagnostics)
+    per_link, _ = findings_by_link(data.robot, data.result.diagnostics)
     document = scene_document(data.scene, per_link)
     document["show"] = {"visual": True, "collision": False, "inertia": False, "findings": True}
     return view_fragment(document, element_id="robotdesc-view", height="560px")
@@ -290,8 +296,7 @@ def _view_section(data: ReportData) -> str:
 def render_html_report(data: ReportData, title: str | None = None) -> str:
     """The complete, self-contained report page."""
 
-    result = data.result
-    robot = result.robot
+    result, robot = data.result, data.robot
     heading = title or f"{robot.name}: robotdesc report"
     counts = "".join(f'<span class="sev-{_e(level)}">{n} {_e(level)}</span>'
                      for level, n in result.counts.items())

@@ -9,13 +9,16 @@ from __future__ import annotations
 import json
 import os
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from robotdesc._version import __version__
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.linting.merge import merge_findings
 from robotdesc.rules.fixes import fix_applicability
 from robotdesc.source import Span, passed_sites
+
+if TYPE_CHECKING:
+    from robotdesc.linting.result import LintFailure, LintResult
 
 SCHEMA_VERSION = 1
 
@@ -121,7 +124,7 @@ def _applicability(diagnostic: Diagnostic) -> str | None:
     return found.value if found is not None else None
 
 
-def failure_dict(failure: Any) -> dict[str, Any]:
+def failure_dict(failure: LintFailure) -> dict[str, Any]:
     """A file that could not be checked (`LintFailure`) as a JSON-ready dict."""
     error = failure.error
     return {
@@ -133,7 +136,8 @@ def failure_dict(failure: Any) -> dict[str, Any]:
     }
 
 
-def report_dict(results: Sequence[Any], failures: Sequence[Any] = ()) -> dict[str, Any]:
+def report_dict(results: Sequence[LintResult], failures: Sequence[LintFailure] = ()
+                ) -> dict[str, Any]:
     """The whole report for `LintResult`s and `LintFailure`s: one diagnostic per problem
     and source location (merged over variants and elements, robotdesc.linting.merge)."""
 
@@ -172,7 +176,7 @@ def report_dict(results: Sequence[Any], failures: Sequence[Any] = ()) -> dict[st
     }
 
 
-def render_json(results: Sequence[Any], failures: Sequence[Any] = ()) -> str:
+def render_json(results: Sequence[LintResult], failures: Sequence[LintFailure] = ()) -> str:
     """The report as indented JSON text, ending with a newline."""
     return json.dumps(report_dict(results, failures), indent=2, ensure_ascii=False) + "\n"
 

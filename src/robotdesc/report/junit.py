@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING
 
 from lxml import etree
 
@@ -21,11 +21,14 @@ from robotdesc.linting.merge import MergedFinding, merge_findings
 from robotdesc.linting.targets import target_name
 from robotdesc.source import Span, passed_sites
 
+if TYPE_CHECKING:
+    from robotdesc.linting.result import LintFailure, LintResult
+
 #: The name of the test case of a target that could not be checked.
 CHECK_CASE = "expand and parse"
 
 
-def render_junit(results: Sequence[Any], failures: Sequence[Any] = (), *,
+def render_junit(results: Sequence[LintResult], failures: Sequence[LintFailure] = (), *,
                  fail_on: Severity = Severity.INFO, cwd: str | None = None) -> str:
     """The JUnit XML document (UTF-8 text with an XML declaration, ending with a newline).
 
@@ -37,7 +40,7 @@ def render_junit(results: Sequence[Any], failures: Sequence[Any] = (), *,
     """
     root_dir = os.path.abspath(cwd or os.getcwd())
     suites = etree.Element("testsuites", name="robotdesc")
-    by_target: dict[str, list[Any]] = {}
+    by_target: dict[str, list[LintResult]] = {}
     for result in results:
         by_target.setdefault(result.target, []).append(result)
     merged = merge_findings(results)
@@ -53,7 +56,7 @@ def render_junit(results: Sequence[Any], failures: Sequence[Any] = (), *,
     return '<?xml version="1.0" encoding="UTF-8"?>\n' + text
 
 
-def _result_suite(target: str, runs: Sequence[Any], findings: Sequence[MergedFinding],
+def _result_suite(target: str, runs: Sequence[LintResult], findings: Sequence[MergedFinding],
                   fail_on: Severity, root: str) -> etree._Element:
     name = target_name(target, getattr(runs[0], "variant", ()) if len(runs) == 1 else (),
                        root)
@@ -89,7 +92,7 @@ def _result_suite(target: str, runs: Sequence[Any], findings: Sequence[MergedFin
     return suite
 
 
-def _failure_suite(failure: Any, root: str) -> etree._Element:
+def _failure_suite(failure: LintFailure, root: str) -> etree._Element:
     name = target_name(failure.target, getattr(failure, "variant", ()), root)
     error = failure.error
     message = getattr(error, "message", str(error))

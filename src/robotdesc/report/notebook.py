@@ -8,7 +8,6 @@ when IPython is running, so a notebook shows a table where a script sees `repr()
 from __future__ import annotations
 
 import sys
-from typing import Any
 
 from robotdesc.report.html import collision_result_html, inertia_rows_html
 
@@ -19,7 +18,7 @@ RENDERERS = {
 }
 
 
-def html_of(value: Any) -> str | None:
+def html_of(value: object) -> str | None:
     """The HTML a notebook shows for a result, or None when robotdesc does not draw it."""
     renderer = RENDERERS.get((type(value).__module__, type(value).__name__))
     return renderer(value) if renderer else None

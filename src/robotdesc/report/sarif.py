@@ -18,13 +18,17 @@ import os
 import urllib.parse
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from robotdesc._version import __version__
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.linting.merge import MergedFinding, merge_findings, message_key, run_label
 from robotdesc.linting.targets import target_name
 from robotdesc.source import Span, passed_sites
+
+if TYPE_CHECKING:
+    from robotdesc.linting.result import LintFailure, LintResult
+    from robotdesc.rules.registry import Rule
 
 SARIF_VERSION = "2.1.0"
 SARIF_SCHEMA_URI = "https://json.schemastore.org/sarif-2.1.0.json"
@@ -36,8 +40,8 @@ FINGERPRINT_KEY = "robotdescFinding/v2"
 _LEVEL = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "note"}
 
 
-def render_sarif(results: Sequence[Any], failures: Sequence[Any] = (), *,
-                 rules: Sequence[Any] | None = None, cwd: str | None = None) -> str:
+def render_sarif(results: Sequence[LintResult], failures: Sequence[LintFailure] = (), *,
+                 rules: Sequence[Rule] | None = None, cwd: str | None = None) -> str:
     """The SARIF log as indented JSON text, ending with a newline.
 
     Args:
@@ -50,8 +54,8 @@ def render_sarif(results: Sequence[Any], failures: Sequence[Any] = (), *,
                       ensure_ascii=False) + "\n"
 
 
-def sarif_log(results: Sequence[Any], failures: Sequence[Any] = (), *,
-              rules: Sequence[Any] | None = None, cwd: str | None = None) -> dict[str, Any]:
+def sarif_log(results: Sequence[LintResult], failures: Sequence[LintFailure] = (), *,
+              rules: Sequence[Rule] | None = None, cwd: str | None = None) -> dict[str, Any]:
     """The SARIF log as a JSON-ready dict."""
 
     if rules is None:
@@ -79,7 +83,7 @@ def sarif_log(results: Sequence[Any], failures: Sequence[Any] = (), *,
     }
 
 
-def rule_descriptor(rule: Any) -> dict[str, Any]:
+def rule_descriptor(rule: Rule) -> dict[str, Any]:
     """A rule's SARIF reportingDescriptor: id, name, descriptions, help, default level."""
     from robotdesc.rules.docs import SECTION_HEADINGS, rule_anchor
 
@@ -180,7 +184,7 @@ def _result(finding: MergedFinding, index: dict[str, int], root: str) -> dict[st
     return entry
 
 
-def _notification(failure: Any, root: str) -> dict[str, Any]:
+def _notification(failure: LintFailure, root: str) -> dict[str, Any]:
     error = failure.error
     span = getattr(error, "span", None)
     target = target_name(failure.target, getattr(failure, "variant", ()), root)

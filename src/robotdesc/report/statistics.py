@@ -12,13 +12,14 @@ import json
 from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from robotdesc.linting.merge import merge_findings
 from robotdesc.report.table import render_table
 
 if TYPE_CHECKING:
     from robotdesc.diagnostics import Severity
+    from robotdesc.linting.result import LintResult
 
 
 @dataclass(frozen=True)
@@ -38,7 +39,7 @@ class CodeCount:
     count: int
 
 
-def code_counts(results: Sequence[Any]) -> list[CodeCount]:
+def code_counts(results: Sequence[LintResult]) -> list[CodeCount]:
     """Findings counted per rule code, most first, then by code (a problem repeated over
     variants and elements counts once, as in the reports)."""
     counts: Counter[str] = Counter()
@@ -53,7 +54,7 @@ def code_counts(results: Sequence[Any]) -> list[CodeCount]:
             for code, n in sorted(counts.items(), key=lambda item: (-item[1], item[0]))]
 
 
-def render_statistics_text(results: Sequence[Any]) -> str:
+def render_statistics_text(results: Sequence[LintResult]) -> str:
     """The counts as an aligned table (text ending with a newline)."""
     rows = [(str(c.count), c.code, c.name, c.severity) for c in code_counts(results)]
     if not rows:
@@ -64,7 +65,7 @@ def render_statistics_text(results: Sequence[Any]) -> str:
     return text + f"{str(total).rjust(width)}  total\n"
 
 
-def render_statistics_json(results: Sequence[Any]) -> str:
+def render_statistics_json(results: Sequence[LintResult]) -> str:
     """The counts as a JSON array of {code, name, severity, count}."""
     document = [{"code": c.code, "name": c.name, "severity": c.severity, "count": c.count}
                 for c in code_counts(results)]

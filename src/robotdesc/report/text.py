@@ -17,7 +17,7 @@ from __future__ import annotations
 import os
 import re
 from collections.abc import Callable, Iterable, Sequence
-from typing import TYPE_CHECKING, Any, TextIO
+from typing import TYPE_CHECKING, TextIO
 
 from robotdesc.cache_dir import read_regular_file
 from robotdesc.diagnostics import Diagnostic, Severity
@@ -110,7 +110,7 @@ def render_lines(results: Sequence[LintResult], failures: Sequence[LintFailure] 
 _LISTED_VARIANTS = 10
 
 
-def variant_text(result: Any, show: Callable[[str], str] = display_path) -> str:
+def variant_text(result: LintResult, show: Callable[[str], str] = display_path) -> str:
     """A linted variant by name and arguments: `urdf/a.urdf.xacro hand:=false` (or
     `(default arguments)`)."""
     args = getattr(result, "args", ()) or getattr(result, "variant", ())
@@ -182,7 +182,7 @@ def write_text(stream: TextIO, results: Sequence[LintResult],
         console.print(rendered)
 
 
-def render_failure(failure: Any, *, cwd: str | None = None, show_source: bool = True) -> str:
+def render_failure(failure: LintFailure, *, cwd: str | None = None, show_source: bool = True) -> str:
     """A file that could not be checked: `path:line:col: error: message`, the source line
     and the macro call chain (plain text, ending with a newline)."""
     show = lambda path: display_path(path, cwd)

@@ -14,7 +14,7 @@ import os
 from collections.abc import Callable, Iterator
 from typing import TYPE_CHECKING
 
-from robotdesc.diagnostics import Finding, Severity
+from robotdesc.diagnostics import Finding, Severity, ValueChange
 from robotdesc.inertia.links import is_dynamics_model
 from robotdesc.mesh.records import MassMethod, MeshSummary
 from robotdesc.mesh.resolve import local_path
@@ -151,7 +151,32 @@ def mesh_name_case_mismatch(robot: Robot, ctx: RuleContext) -> Iterator[Finding]
     </link>
     ```
     """
-    yield from _resolve_problems(ctx, {"case-mismatch"})
+    for link, kind, index, ref, found in _lookups(ctx):
+        problem = found.resolution.problem
+        if problem is None or problem.kind.value != "case-mismatch":
+            continue
+        element = _element(link, kind, index)
+        fixed = _case_fixed(ref.filename, problem.candidate)
+        yield Finding(problem.message, ref.where, element,
+                      changes=() if fixed is None else
+                      (ValueChange(f"{element}/geometry/mesh", "filename", fixed),),
+                      unfixable="the file with the right case was not found" if fixed is None
+                      else "")
+
+
+def _case_fixed(filename: str, candidate: str | None) -> str | None:
+    """M102's fix: `filename` with its trailing parts spelt as the file on disk
+    `candidate` (None: no file to follow)."""
+    if not candidate:
+        return None
+    parts = filename.split("/")
+    actual = os.path.normpath(candidate).split(os.sep)
+    fixed = list(parts)
+    for offset in range(1, min(len(parts), len(actual)) + 1):
+        if parts[-offset].lower() != actual[-offset].lower():
+            break
+        fixed[-offset] = actual[-offset]
+    return "/".join(fixed)
 
 
 @rule("M103", "unknown-mesh-package", family=FAMILY, severity=Severity.ERROR, needs=NEEDS)
@@ -383,10 +408,13 @@ def mesh_in_millimetres(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
         others = sizes[:]
         others.remove(diagonal)
         if looks_like_millimetres(diagonal, size, others):
+            element = _element(link, kind, index)
+            scaled = " ".join(f"{v * 0.001:g}" for v in ref.scale)
             yield Finding(f"'{ref.filename}' is {diagonal:.4g} m across, while the robot's "
                           f"joints span {size:.3g} m: it looks like millimetres (add "
                           'scale="0.001 0.001 0.001" or re-export in metres)', ref.where,
-                          _element(link, kind, index))
+                          element,
+                          changes=(ValueChange(f"{element}/geometry/mesh", "scale", scaled),))
 
 
 def _diagonal(summary: MeshSummary) -> float:

@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
+import dataclasses
+import os
 import posixpath
 import re
+import urllib.parse
 from collections.abc import Iterator
 
-from robotdesc.diagnostics import Finding, Severity
+from robotdesc.diagnostics import Finding, Severity, ValueChange
+from robotdesc.expansion.packages import enclosing_package
 from robotdesc.model.elements import Collision, MeshRef, Robot, Visual
 from robotdesc.rules.registry import RuleContext, rule
 
@@ -43,6 +47,24 @@ def made_by_find(filename: str, ctx: RuleContext) -> bool:
                for folder in ctx.expansion.package_folders)
 
 
+def _with_package_fix(finding: Finding, filename: str) -> Finding:
+    """P101/P102's finding with its fix: the absolute path or file:// URI `filename` as
+    package://PACKAGE/PATH of the package that holds the file, or why there is none."""
+    path = filename
+    if filename.lower().startswith("file://"):
+        path = urllib.parse.unquote(urllib.parse.urlparse(filename).path)
+    if not os.path.isabs(path):
+        return dataclasses.replace(finding, unfixable=f"'{filename}' is not an absolute path")
+    found = enclosing_package(os.path.normpath(path))
+    if found is None:
+        return dataclasses.replace(
+            finding, unfixable=f"'{path}' is in no ROS package (no package.xml above it)")
+    name, root = found
+    relative = os.path.relpath(os.path.realpath(path), root).replace(os.sep, "/")
+    return dataclasses.replace(finding, changes=(ValueChange(
+        f"{finding.element}/geometry/mesh", "filename", f"package://{name}/{relative}"),))
+
+
 @rule("P101", "absolute-mesh-path", family=FAMILY, severity=Severity.WARNING)
 def absolute_mesh_path(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """Finds a mesh whose filename is an absolute file system path.
@@ -73,8 +95,9 @@ def absolute_mesh_path(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """
     for mesh, element in _meshes(robot):
         if _is_absolute(mesh.filename) and not made_by_find(mesh.filename, ctx):
-            yield Finding(f"mesh filename '{mesh.filename}' is an absolute path",
-                          mesh.where, element)
+            yield _with_package_fix(Finding(
+                f"mesh filename '{mesh.filename}' is an absolute path", mesh.where, element),
+                mesh.filename)
 
 
 @rule("P102", "file-uri-mesh", family=FAMILY, severity=Severity.WARNING)
@@ -108,8 +131,9 @@ def file_uri_mesh(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     """
     for mesh, element in _meshes(robot):
         if mesh.filename.lower().startswith("file://") and not made_by_find(mesh.filename, ctx):
-            yield Finding(f"mesh filename '{mesh.filename}' is a file:// URI",
-                          mesh.where, element)
+            yield _with_package_fix(Finding(
+                f"mesh filename '{mesh.filename}' is a file:// URI", mesh.where, element),
+                mesh.filename)
 
 
 @rule("P103", "non-portable-mesh-path", family=FAMILY, severity=Severity.WARNING)

@@ -16,7 +16,6 @@ from robotdesc.expansion import ExpandOptions
 from robotdesc.expansion.packages import enclosing_package
 from robotdesc.linting.driver import lint_expanded
 from robotdesc.linting.fix.engine import FIXED, FixOutcome, plan_fixes
-from robotdesc.linting.fix.run import MeshCase
 from robotdesc.linting.matrix import Variant
 from robotdesc.linting.parallel import cached_result, lint_target
 from robotdesc.linting.targets import LintTarget, discover_targets
@@ -209,9 +208,7 @@ class Session:
                 self.results[key] = lint_target(self.targets[key], {}, self._options(),
                                                 None, ())
         results = [self.results[k] for k in chosen]
-        helpers = {self.results[k].target: MeshCase(self.results[k], self.targets[k].config,
-                                                    self._options()) for k in chosen}
-        return list(plan_fixes(results, unsafe=unsafe, helpers=helpers).outcomes)
+        return list(plan_fixes(results, unsafe=unsafe).outcomes)
 
     def _options(self) -> Any:
         return self.expand_options if self.expand_options is not None else ExpandOptions()

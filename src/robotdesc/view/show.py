@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from robotdesc.diagnostics import Diagnostic
-from robotdesc.errors import UsageError
+from robotdesc.errors import RobotdescError, UsageError
 from robotdesc.expansion import ExpandOptions, expand_file
 from robotdesc.linting.driver import lint_file
 from robotdesc.model.elements import Robot
@@ -123,6 +123,8 @@ def _robot_and_findings(target: Any, args: Mapping[str, str] | None,
         options = ExpandOptions(package_paths=tuple(package_paths))
         if lint:
             result = lint_file(path, args=args, expand_options=options)
+            if result.robot is None:
+                raise RobotdescError(f"{path}: the lint kept no model")
             return result.robot, tuple(result.diagnostics)
         expanded = expand_file(path, dict(args or {}), options=options)
         return parse_urdf(expanded.xml, expanded.source, expanded.files), ()

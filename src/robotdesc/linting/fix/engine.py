@@ -9,7 +9,7 @@ Writes go only to files inside the linted package.
 from __future__ import annotations
 
 import logging
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 from robotdesc.diagnostics import Diagnostic
@@ -17,7 +17,7 @@ from robotdesc.edit.engine import FileChange, apply_fixes, resolve_conflicts, wr
 from robotdesc.edit.fix import Applicability, Edit, Fix
 from robotdesc.edit.index import ExpandedIndex
 from robotdesc.edit.locate import SourceCache, changes_fix, package_folder
-from robotdesc.linting.fix.changes import CaseHelper, fixer_for
+from robotdesc.linting.fix.changes import fixer_for
 from robotdesc.linting.result import LintResult
 from robotdesc.rules.fixes import fix_applicability
 
@@ -77,14 +77,12 @@ def package_root(target: str) -> str:
     return package_folder(target)
 
 
-def plan_fixes(results: Sequence[LintResult], *, unsafe: bool = False,
-               helpers: Mapping[str, CaseHelper] | None = None) -> FixPlan:
+def plan_fixes(results: Sequence[LintResult], *, unsafe: bool = False) -> FixPlan:
     """Plan the fixes of every fixable diagnostic of `results` (LintResults with their
     expansion and model kept).
 
     Args:
         unsafe: plan unsafe fixes too.
-        helpers: target -> M102's helper (the file on disk a mesh reference names).
     """
     outcomes: list[FixOutcome] = []
     caches: dict[str, SourceCache] = {}
@@ -108,8 +106,7 @@ def plan_fixes(results: Sequence[LintResult], *, unsafe: bool = False,
                 expanded = result.expanded
                 index = ExpandedIndex(expanded.xml, expanded.source, tuple(expanded.files))
                 indexes.append(index)
-            helper = (helpers or {}).get(result.target)
-            fix = changes_fix(fixer(diagnostic, index, helper), index, cache, applicability)
+            fix = changes_fix(fixer(diagnostic, index), index, cache, applicability)
             outcomes.append(_outcome(diagnostic, applicability, fix))
     raw: dict[str, bytes] = {}
     for cache in caches.values():

@@ -8,16 +8,12 @@ import logging
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
-from robotdesc.config import Config
 from robotdesc.errors import InputError
 from robotdesc.expansion import ExpandOptions
 from robotdesc.linting.driver import lint_file
-from robotdesc.linting.fix.changes import CaseHelper
 from robotdesc.linting.fix.engine import FixOutcome, FixPlan, plan_fixes, write_fixes
 from robotdesc.linting.result import LintResult
 from robotdesc.linting.targets import LintTarget
-from robotdesc.mesh.context import MeshContext
-from robotdesc.model.elements import MeshRef, Robot
 
 log = logging.getLogger(__name__)
 
@@ -42,43 +38,6 @@ class FixRun:
     fixed: int = 0
     written: tuple[str, ...] = ()
     refused: tuple[str, ...] = ()
-
-
-class MeshCase:
-    """M102's helper: the file on disk that a case-mismatched mesh reference names."""
-
-    def __init__(self, result: LintResult, config: Config, options: ExpandOptions) -> None:
-        self.result, self.config, self.options = result, config, options
-        self._context: MeshContext | None = None
-
-    def case_candidate(self, element: str) -> str | None:
-        """The file on disk for the `<mesh>` of diagnostic element `element` whose name
-        differs from the reference only in case, or None."""
-        robot = self.result.robot
-        ref = _mesh_ref(robot, element) if isinstance(robot, Robot) else None
-        if ref is None:
-            return None
-        if self._context is None:
-            self._context = MeshContext.for_file(
-                self.result.robot, self.result.target, self.config.meshes,
-                tuple(self.options.package_paths),
-                tuple(self.options.package_map) + tuple(self.config.packages),
-                use_cache=self.options.use_cache, cache_dir=self.options.cache_dir)
-        problem = self._context.lookup(ref).resolution.problem
-        return problem.candidate if problem is not None else None
-
-
-def _mesh_ref(robot: Robot, element: str) -> MeshRef | None:
-    """The MeshRef named "link:NAME/visual[i]" or ".../collision[i]"."""
-    head, _, tail = element.partition("/")
-    link = next((l for l in robot.links if f"link:{l.name}" == head), None)
-    kind, _, rest = tail.partition("[")
-    if link is None or kind not in ("visual", "collision") or not rest.endswith("]"):
-        return None
-    shapes = link.visuals if kind == "visual" else link.collisions
-    index = int(rest[:-1])
-    geometry = shapes[index].geometry if index < len(shapes) else None
-    return geometry if isinstance(geometry, MeshRef) else None
 
 
 def fix_targets(targets: Sequence[LintTarget], *, args: Mapping[str, str] | None = None,
@@ -114,7 +73,6 @@ def _plan(targets: Sequence[LintTarget], args: Mapping[str, str] | None,
           ignore: Sequence[str], unsafe: bool) -> FixPlan:
     options = expand_options or ExpandOptions()
     results: list[LintResult] = []
-    helpers: dict[str, CaseHelper] = {}
     for target in targets:
         try:
             result = lint_file(target.path, target.config,
@@ -124,5 +82,4 @@ def _plan(targets: Sequence[LintTarget], args: Mapping[str, str] | None,
             log.info("not fixing %s: %s", target.path, exc)
             continue
         results.append(result)
-        helpers[result.target] = MeshCase(result, target.config, options)
-    return plan_fixes(results, unsafe=unsafe, helpers=helpers)
+    return plan_fixes(results, unsafe=unsafe)

@@ -6,7 +6,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from robotdesc.linting.select import find_rule, is_selected, select_rules, unknown_selectors
+from robotdesc.rules.select import find_rule, is_selected, select_rules, unknown_selectors
 
 RULES = [SimpleNamespace(code=c, name=n, opt_in=False) for c, n in [
     ("J101", "revolute-without-limit"), ("J201", "mimic-target-missing"),
