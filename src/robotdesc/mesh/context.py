@@ -209,25 +209,21 @@ class MeshContext:
             notes.append(f"no {wanted} geometry: measured the {other} geometry")
         if not shapes:
             return LinkGeometry(link.name, "", None, None, notes=("no geometry",))
-        parts, boxes, unmeasured, estimated = [], [], [], False
-        for shape in shapes:
-            measured = self._shape_properties(shape)
-            if isinstance(measured, str):
-                unmeasured.append(measured)
-                continue
-            props, box, hull = measured
-            estimated = estimated or hull
-            parts.append(props.transformed(shape.origin.xyz, shape.origin.rpy))
-            boxes.append(moved_bounds(box, shape.origin.xyz, shape.origin.rpy))
-        if not parts:
-            return LinkGeometry(link.name, source, None, None, tuple(unmeasured),
-                                notes=tuple(notes))
-        low = tuple(min(b[0][i] for b in boxes) for i in range(3))
-        high = tuple(max(b[1][i] for b in boxes) for i in range(3))
+        measured = tuple((self._shape_properties(shape), shape.origin.xyz, shape.origin.rpy)
+                         for shape in shapes)
+        combined = _COMBINED.get(measured)
+        if combined is None:
+            combined = _combine(measured)
+            if len(_COMBINED) >= _COMBINED_ENTRIES:
+                _COMBINED.clear()
+            _COMBINED[measured] = combined
+        properties, bounds, unmeasured, estimated = combined
+        if properties is None:
+            return LinkGeometry(link.name, source, None, None, unmeasured, notes=tuple(notes))
         if estimated:
             notes.append("part of it is a convex-hull estimate (a mesh is not a closed surface)")
-        return LinkGeometry(link.name, source, combine(parts), (low, high),  # type: ignore[arg-type]
-                            tuple(unmeasured), estimated, tuple(notes))
+        return LinkGeometry(link.name, source, properties, bounds, unmeasured, estimated,
+                            tuple(notes))
 
     def _shape_properties(self, shape: Visual | Collision
                           ) -> tuple[MassProperties, tuple[Vec3, Vec3], bool] | str:
@@ -252,6 +248,35 @@ class MeshContext:
             return str(error)
         half = _primitive_half_extent(geometry)
         return props, ((-half[0], -half[1], -half[2]), half), False
+
+
+#: One shape as `_measure` combines it: its properties at density 1, local bounds and
+#: whether they are a hull estimate (or why it cannot be measured), and its origin.
+_Measured = tuple[tuple[MassProperties, tuple[Vec3, Vec3], bool] | str, Vec3, Vec3]
+#: A link's shapes combined: (properties, bounds, unmeasured, estimated).
+_Combined = tuple[MassProperties | None, tuple[Vec3, Vec3] | None, tuple[str, ...], bool]
+#: Combinations already computed in this process, by their shapes' values: the variants of a
+#: description and an editor's saves measure the same links again and again.
+_COMBINED: dict[tuple[_Measured, ...], _Combined] = {}
+_COMBINED_ENTRIES = 100_000
+
+
+def _combine(measured: tuple[_Measured, ...]) -> _Combined:
+    """The shapes' properties moved to the link frame and summed, and their bounds."""
+    parts, boxes, unmeasured, estimated = [], [], [], False
+    for found, xyz, rpy in measured:
+        if isinstance(found, str):
+            unmeasured.append(found)
+            continue
+        props, box, hull = found
+        estimated = estimated or hull
+        parts.append(props.transformed(xyz, rpy))
+        boxes.append(moved_bounds(box, xyz, rpy))
+    if not parts:
+        return None, None, tuple(unmeasured), False
+    low = tuple(min(b[0][i] for b in boxes) for i in range(3))
+    high = tuple(max(b[1][i] for b in boxes) for i in range(3))
+    return combine(parts), (low, high), tuple(unmeasured), estimated  # type: ignore[return-value]
 
 
 def _shapes(link: Link, kind: str) -> tuple[Visual | Collision, ...]:
