@@ -14,6 +14,7 @@ Plain Python: when every mesh summary comes from the cache, nothing here imports
 from __future__ import annotations
 
 import logging
+import os
 from collections.abc import Iterator
 from dataclasses import dataclass
 
@@ -162,7 +163,7 @@ class MeshContext:
         if not resolution.ok or resolution.path is None:
             return MeshLookup(ref, resolution)
         try:
-            summary = analyze_mesh_file(resolution.path, ref.scale, self._limits, self._cache)
+            summary = _summary(resolution.path, tuple(ref.scale), self._limits, self._cache)
         except MeshError as error:
             return MeshLookup(ref, resolution, error=error)
         return MeshLookup(ref, resolution, summary)
@@ -248,6 +249,41 @@ class MeshContext:
             return str(error)
         half = _primitive_half_extent(geometry)
         return props, ((-half[0], -half[1], -half[2]), half), False
+
+
+#: (path, device, inode, size, modification and change times (ns), scale, limits) -> the
+#: summary of that file (or why it is no mesh), for this process.
+_SUMMARIES: dict[tuple[object, ...], MeshSummary | MeshError] = {}
+_SUMMARY_ENTRIES = 10_000
+
+
+def _summary(path: str, scale: tuple[float, ...], limits: MeshLimits,
+             cache: MeshCache | None) -> MeshSummary:
+    """`analyze_mesh_file`, remembered in this process under the file's identity (as
+    `os.stat` gives it), so that the variants of a description and an editor's saves neither
+    hash nor read a mesh file again until it changes.
+
+    Raises:
+        MeshError: the file cannot be used as a mesh.
+    """
+    try:
+        info = os.stat(path)
+    except OSError:
+        return analyze_mesh_file(path, scale, limits, cache)
+    key = (path, info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns, info.st_ctime_ns,
+           scale, limits)
+    found = _SUMMARIES.get(key)
+    if found is None:
+        try:
+            found = analyze_mesh_file(path, scale, limits, cache)
+        except MeshError as error:
+            found = error
+        if len(_SUMMARIES) >= _SUMMARY_ENTRIES:
+            _SUMMARIES.clear()
+        _SUMMARIES[key] = found
+    if isinstance(found, MeshError):
+        raise found.with_traceback(None)
+    return found
 
 
 #: One shape as `_measure` combines it: its properties at density 1, local bounds and
