@@ -14,6 +14,7 @@ Plain Python: when every mesh summary comes from the cache, nothing here imports
 from __future__ import annotations
 
 import logging
+import math
 import os
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -212,8 +213,10 @@ class MeshContext:
             return LinkGeometry(link.name, "", None, None, notes=("no geometry",))
         measured = tuple((self._shape_properties(shape), shape.origin.xyz, shape.origin.rpy)
                          for shape in shapes)
-        combined = _COMBINED.get(measured)
-        if combined is None:
+        if any(v == 0.0 and math.copysign(1.0, v) < 0.0  # -0.0 equals 0.0 as a key
+               for shape in shapes for v in (*shape.origin.xyz, *shape.origin.rpy)):
+            combined = _combine(measured)  # not remembered: its zeros' signs may differ
+        elif (combined := _COMBINED.get(measured)) is None:
             combined = _combine(measured)
             if len(_COMBINED) >= _COMBINED_ENTRIES:
                 _COMBINED.clear()
