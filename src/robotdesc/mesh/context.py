@@ -213,14 +213,16 @@ class MeshContext:
             return LinkGeometry(link.name, "", None, None, notes=("no geometry",))
         measured = tuple((self._shape_properties(shape), shape.origin.xyz, shape.origin.rpy)
                          for shape in shapes)
-        if any(v == 0.0 and math.copysign(1.0, v) < 0.0  # -0.0 equals 0.0 as a key
-               for shape in shapes for v in (*shape.origin.xyz, *shape.origin.rpy)):
-            combined = _combine(measured)  # not remembered: its zeros' signs may differ
-        elif (combined := _COMBINED.get(measured)) is None:
+        # -0.0 equals 0.0 as a key, but the zeros' signs of the result may differ: not kept
+        keep = not any(v == 0.0 and math.copysign(1.0, v) < 0.0
+                       for shape in shapes for v in (*shape.origin.xyz, *shape.origin.rpy))
+        combined = _COMBINED.get(measured) if keep else None
+        if combined is None:
             combined = _combine(measured)
-            if len(_COMBINED) >= _COMBINED_ENTRIES:
-                _COMBINED.clear()
-            _COMBINED[measured] = combined
+            if keep:
+                if len(_COMBINED) >= _COMBINED_ENTRIES:
+                    _COMBINED.clear()
+                _COMBINED[measured] = combined
         properties, bounds, unmeasured, estimated = combined
         if properties is None:
             return LinkGeometry(link.name, source, None, None, unmeasured, notes=tuple(notes))
@@ -254,8 +256,8 @@ class MeshContext:
         return props, ((-half[0], -half[1], -half[2]), half), False
 
 
-#: (path, device, inode, size, modification and change times (ns), scale, limits) -> the
-#: summary of that file (or why it is no mesh), for this process.
+#: (path, device, inode, size, modification and change times (ns), scale, limits, the mesh
+#: cache's folder) -> the summary of that file (or why it is no mesh), for this process.
 _SUMMARIES: dict[tuple[object, ...], MeshSummary | MeshError] = {}
 _SUMMARY_ENTRIES = 10_000
 
@@ -274,7 +276,7 @@ def _summary(path: str, scale: tuple[float, ...], limits: MeshLimits,
     except OSError:
         return analyze_mesh_file(path, scale, limits, cache)
     key = (path, info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns, info.st_ctime_ns,
-           scale, limits)
+           scale, limits, None if cache is None else str(cache.directory))  # a cache gets it
     found = _SUMMARIES.get(key)
     if found is None:
         try:
