@@ -636,20 +636,20 @@ class _Decodings:
         self.columns = _ColumnFinder()
 
 
-#: File table -> its decodings, for the last few tables (the variants of a description and
-#: an editor's saves parse expansions with the same table again and again).
+#: File table -> its decodings, for up to a few tables (the variants of a description and an
+#: editor's saves parse expansions with the same table again and again).
 _SHARED: dict[tuple[str, ...], _Decodings] = {}
 _SHARED_TABLES = 8
 
 
 def _decodings(files: tuple[str, ...]) -> _Decodings:
     """The shared decodings of this file table, ready for a new parse."""
-    found = _SHARED.pop(files, None)
+    found = _SHARED.get(files)
     if found is None:
         found = _Decodings()
-        while len(_SHARED) >= _SHARED_TABLES:
-            del _SHARED[next(iter(_SHARED))]  # the least recently used table
-    _SHARED[files] = found
+        if len(_SHARED) >= _SHARED_TABLES:
+            _SHARED.clear()  # (safe while another thread parses: no iteration)
+        _SHARED[files] = found
     found.columns.new_parse()
     return found
 
