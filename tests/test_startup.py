@@ -84,9 +84,14 @@ def test_an_index_of_other_sources_is_not_used(tmp_path: Path) -> None:
 
 
 #: Not imported by a lint answered from the result cache (nothing is expanded or checked).
+#: Nor the lint machinery: `commands/lint.py` asks the cache before importing it.
 NOT_FOR_A_WARM_LINT = ("numpy", "trimesh", "lxml", "xacro", "rich", "asyncio",
                        "multiprocessing", "robotdesc.rules.catalog", "robotdesc.model.parse",
-                       "robotdesc.expansion.runner")
+                       "robotdesc.expansion.runner", "robotdesc.commands.lint_run",
+                       "robotdesc.linting.parallel", "robotdesc.linting.driver",
+                       "robotdesc.linting.inputs", "robotdesc.linting.baseline",
+                       "robotdesc.model.elements", "robotdesc.mesh.locate",
+                       "robotdesc.mesh.context")
 
 
 def test_a_warm_lint_reads_the_result_cache_and_imports_no_checker(tmp_path: Path) -> None:

@@ -21,17 +21,18 @@ def code_id() -> str:
     """
     package = os.path.dirname(os.path.abspath(__file__))
     digest = hashlib.sha256(__version__.encode())
+    skip = len(package) + 1  # the path relative to the package, as one slice (no relpath)
     for folder, subfolders, files in os.walk(package):
         subfolders[:] = sorted(name for name in subfolders if name != "__pycache__")
         for name in sorted(files):
             if name.endswith((".py", ".js")):
-                path = os.path.join(folder, name)
+                path = f"{folder}/{name}"
                 try:
                     status = os.stat(path)
                 except OSError:
                     continue
-                relative = os.path.relpath(path, package)
-                digest.update(f"{relative}\0{status.st_size}\0{status.st_mtime_ns}\n".encode())
+                digest.update(f"{path[skip:]}\0{status.st_size}\0{status.st_mtime_ns}\n"
+                              .encode())
     return f"{__version__}+{digest.hexdigest()[:16]}"
 
 

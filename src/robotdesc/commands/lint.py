@@ -1,45 +1,36 @@
 """`robotdesc lint PATH... [name:=value]`: lint descriptions, report in the chosen format.
 
 Exit codes: 0 no finding at or above --fail-on, 1 findings, 2 an input could not be checked.
-The fix options (--fix, --diff, --unsafe-fixes) run through `commands/lint_fix.py`.
+A lint whose every target the whole-result cache answers is read and reported here, importing
+none of the lint machinery (no expansion, parse or rule module: tests/test_startup.py); any
+other lint, and the fix options (--fix, --diff, --unsafe-fixes), run through
+`commands/lint_run.py`.
 """
 
 from __future__ import annotations
 
 import argparse
-import dataclasses
-import json
 import logging
-import os
 import sys
 from collections.abc import Sequence
-from typing import TYPE_CHECKING, Any, TextIO
+from typing import TYPE_CHECKING, Any
 
-from robotdesc.commands.inputs import (
-    EXIT_FINDINGS,
-    EXIT_INPUT,
-    EXIT_OK,
-    expand_options,
-    split_inputs,
+from robotdesc.commands.inputs import expand_options, split_inputs
+from robotdesc.commands.lint_report import (
+    finish,
+    known_inputs,
+    split_outcomes,
+    write_discovery,
 )
 from robotdesc.config import load_config
-from robotdesc.diagnostics import Severity
 from robotdesc.errors import PINOCCHIO_HINT, InputError, UsageError
 from robotdesc.kinematics.optional import pinocchio_available
-from robotdesc.linting.baseline import (
-    apply_baseline,
-    baseline_counts,
-    read_baseline,
-    render_baseline,
-)
-from robotdesc.linting.inputs import run_inputs
+from robotdesc.linting import result_cache
+from robotdesc.linting.cached import cached_result
 from robotdesc.linting.result import LintFailure, LintResult
-from robotdesc.linting.targets import Discovery, LintTarget, discover_targets, target_name
-from robotdesc.output import RunInputs, check_output, write_output
-from robotdesc.progress import progress_for
-from robotdesc.report.formats import FORMAT_NAMES, FORMATS, render_report
-from robotdesc.report.statistics import render_statistics_json, render_statistics_text
-from robotdesc.report.text import render_failure, render_text, write_text
+from robotdesc.linting.targets import LintTarget, discover_targets, target_name
+from robotdesc.output import RunInputs, check_output
+from robotdesc.report.formats import FORMAT_NAMES, FORMATS
 from robotdesc.rules.select import best_match, check_selectors
 from robotdesc.source import Span
 
@@ -103,7 +94,8 @@ def register(subparsers: Any, *, common: argparse.ArgumentParser,
 
 
 def run_lint(ns: argparse.Namespace) -> int:
-    """The handler: find the targets, (fix,) lint, apply the baseline, report."""
+    """The handler: find the targets; when the whole-result cache answers every one, report
+    its findings; else (fix,) lint, apply the baseline, report (`commands/lint_run.py`)."""
     if ns.statistics and ns.format not in ("text", "json"):
         raise UsageError("--statistics works with --format text or json")
     if ns.jobs < 0:
@@ -124,36 +116,41 @@ def run_lint(ns: argparse.Namespace) -> int:
             failures.append(LintFailure(raw, exc))
             continue
         if discovery.directory:
-            _write_discovery(sys.stderr, discovery)
+            write_discovery(sys.stderr, discovery)
         failures.extend(LintFailure(link, InputError(
             "a symlink whose target lies outside the linted folder; not read", Span(link)))
             for link in discovery.refused)
         targets.extend(discovery.targets)
     targets = _with_cli_arguments(ns, targets, args)
     _check_lint_outputs(ns, targets)
-    if ns.fix or ns.diff:
-        from robotdesc.commands.lint_fix import run_fixes
+    hits = _answers_from_cache(ns, targets, args, options, select, ignore)
+    if hits is None:
+        from robotdesc.commands.lint_run import lint_and_report  # the lint machinery
 
-        if ns.diff:
-            return run_fixes(ns, targets, args, options, select, ignore)
-        run_fixes(ns, targets, args, options, select, ignore)
-    outcomes = _lint_with_progress(ns, targets, args, options, select, ignore)
-    outcomes = [dataclasses.replace(o, args=tuple({**dict(t.args), **args}.items()))
-                if isinstance(o, LintResult) else o for t, o in zip(targets, outcomes)]
-    results = [o for o in outcomes if isinstance(o, LintResult)]
-    failures += [o for o in outcomes if isinstance(o, LintFailure)]
-    fail_on = {t.path: Severity.parse(ns.fail_on) if ns.fail_on else t.config.fail_on
-               for t in targets}
-    inputs = _lint_inputs(ns, targets, results, failures, options)
-    results = _apply_baseline(ns, results, inputs)
-    failed = any(r.failed(fail_on.get(r.target, Severity.INFO)) for r in results)
+        return lint_and_report(ns, targets, failures, args, options, select, ignore)
+    results, _ = split_outcomes(targets, hits, args)
+    inputs = known_inputs(ns, targets, failures)
+    for result in results:
+        if result.inputs is not None:  # always, for a result read from the cache
+            inputs += result.inputs
+    return finish(ns, targets, results, failures, inputs)
 
-    if ns.format == "text":
-        for failure in failures:  # path:line:col: error: message, the source, the call chain
-            sys.stderr.write(render_failure(LintFailure(failure.target or "robotdesc",
-                                                        failure.error)))
-    _write_report(ns, results, failures, min(fail_on.values(), default=Severity.INFO), inputs)
-    return EXIT_INPUT if failures else EXIT_FINDINGS if failed else EXIT_OK
+
+def _answers_from_cache(ns: argparse.Namespace, targets: list[LintTarget],
+                        args: dict[str, str], options: ExpandOptions,
+                        select: list[str] | None, ignore: list[str]) -> list[LintResult] | None:
+    """Every target's stored result (`result_cache.load` checks each entry and re-hashes its
+    inputs), or None when one is missing or the run fixes or uses a baseline."""
+    if ns.fix or ns.diff or ns.baseline or ns.write_baseline:
+        return None
+    result_cache.new_run()
+    hits = []
+    for target in targets:
+        hit = cached_result(target, args, options, select, ignore)
+        if hit is None:
+            return None
+        hits.append(hit)
+    return hits
 
 
 def _with_cli_arguments(ns: argparse.Namespace, targets: list[LintTarget],
@@ -175,6 +172,7 @@ def _with_cli_arguments(ns: argparse.Namespace, targets: list[LintTarget],
     return targets
 
 
+
 def _note_skipped_kinematics(select: Sequence[str] | None) -> None:
     """Warn when --select names rules that need Pinocchio and it is not installed (a lint
     that only runs them by default says so with -v)."""
@@ -187,6 +185,7 @@ def _note_skipped_kinematics(select: Sequence[str] | None) -> None:
     if chosen:
         log.warning("%s skipped: Pinocchio is not installed; %s", ", ".join(chosen),
                     PINOCCHIO_HINT)
+
 
 
 def selectors(values: Sequence[str], flag: str) -> list[str]:
@@ -203,30 +202,6 @@ def selectors(values: Sequence[str], flag: str) -> list[str]:
     return found
 
 
-def _lint_with_progress(ns: argparse.Namespace, targets: list[LintTarget],
-                        args: dict[str, str], options: ExpandOptions,
-                        select: list[str] | None, ignore: list[str]) -> list[Outcome]:
-    """`lint_targets` with progress on stderr: target by target in this process, or as one
-    step with worker processes."""
-    from robotdesc.linting.parallel import effective_jobs, lint_targets
-
-    with progress_for(ns, "lint", total=len(targets), unit="targets") as progress:
-        if getattr(ns, "scheduler", None):
-            progress.update(0, detail=f"Dask cluster {ns.scheduler}")
-            return lint_targets(targets, args=args, expand_options=options, select=select,
-                                ignore=ignore, jobs=ns.jobs or 0, scheduler=ns.scheduler,
-                                on_done=progress.update)
-        if min(effective_jobs(ns.jobs), len(targets)) > 1:
-            progress.update(0, detail=f"{effective_jobs(ns.jobs)} worker processes")
-            return lint_targets(targets, args=args, expand_options=options, select=select,
-                                ignore=ignore, jobs=ns.jobs)
-        outcomes: list[Outcome] = []
-        for number, target in enumerate(targets):
-            progress.update(number, detail=target.name())
-            outcomes += lint_targets([target], args=args, expand_options=options,
-                                     select=select, ignore=ignore, jobs=1)
-        return outcomes
-
 
 def _check_lint_outputs(ns: argparse.Namespace, targets: list[LintTarget]) -> None:
     """Refuse, before any work, an output that is a target, the config or the baseline."""
@@ -235,100 +210,3 @@ def _check_lint_outputs(ns: argparse.Namespace, targets: list[LintTarget]) -> No
     for path in (ns.output_file, ns.write_baseline):
         if path:
             check_output(path, known)
-
-
-def _lint_inputs(ns: argparse.Namespace, targets: list[LintTarget], results: list[LintResult],
-                 failures: list[LintFailure], options: ExpandOptions) -> RunInputs:
-    """Every file the lint read (targets, includes, configs, package.xml, meshes, the
-    baseline): no output may replace one."""
-    inputs = RunInputs().adding([ns.config, ns.baseline], "a file given to this run")
-    inputs = inputs.adding([t.path for t in targets] + [f.target for f in failures],
-                           "a description being checked")
-    for result in results:
-        inputs += result.inputs if result.inputs is not None else run_inputs(
-            result.target, config_path=result.config_path, expanded=result.expanded,
-            robot=result.robot, package_paths=options.package_paths,
-            package_map=options.package_map)
-    return inputs
-
-
-def _write_discovery(stream: TextIO, discovery: Discovery) -> None:
-    """Say what a directory search found (on stderr: reports stay machine-readable)."""
-    def listing(names: list[str]) -> str:
-        return ", ".join(names[:8]) + (f", ... ({len(names) - 8} more)" if len(names) > 8
-                                       else "")
-
-    base = discovery.path
-    names = [t.name(base) for t in discovery.targets]
-    text = f"robotdesc: {discovery.path}: linting {len(names)} target(s): {listing(names)}"
-    if discovery.libraries:
-        text += (f"; skipped {len(discovery.libraries)} macro librar"
-                 f"{'y' if len(discovery.libraries) == 1 else 'ies'}")
-        log.info("macro libraries: %s",
-                 listing([target_name(p, (), base) for p in discovery.libraries]))
-    if discovery.fragments:
-        text += (f"; skipped {len(discovery.fragments)} file(s) another target includes: "
-                 + listing([target_name(p, (), base) for p in discovery.fragments]))
-    if discovery.unlisted:
-        text += (f"; skipped {len(discovery.unlisted)} file(s) not in their config's targets: "
-                 + listing([target_name(p, (), base) for p in discovery.unlisted]))
-    stream.write(text + "\n")
-
-
-def _apply_baseline(ns: argparse.Namespace, results: list[LintResult],
-                    inputs: RunInputs) -> list[LintResult]:
-    """--write-baseline records the findings; --baseline (or the written one) hides them."""
-    path = ns.write_baseline or ns.baseline
-    if not path:
-        return results
-    if ns.write_baseline:  # applied from memory: the written file is not read back
-        text = render_baseline(results, ns.write_baseline)
-        write_output(ns.write_baseline, text.encode("utf-8"), inputs)
-        count = sum(len(r.diagnostics) for r in results)
-        sys.stderr.write(f"robotdesc: wrote {count} finding(s) to {ns.write_baseline}\n")
-        recorded = baseline_counts(json.loads(text), path)
-    else:
-        recorded = read_baseline(path)
-    outcome = apply_baseline(results, recorded, os.path.dirname(os.path.abspath(path)))
-    kept = [dataclasses.replace(after, suppressed_by_baseline=after.suppressed_by_baseline
-                                + len(before.diagnostics) - len(after.diagnostics))
-            for before, after in zip(results, outcome.results)]
-    outcome = dataclasses.replace(outcome, results=tuple(kept))
-    if outcome.matched or outcome.stale:
-        sys.stderr.write(f"robotdesc: {outcome.matched} finding(s) hidden by the baseline "
-                         f"{path}" + (f"; {outcome.stale} recorded finding(s) no longer occur "
-                                      "(rewrite it with --write-baseline)"
-                                      if outcome.stale else "") + "\n")
-    return list(outcome.results)
-
-
-def _write_report(ns: argparse.Namespace, results: list[LintResult],
-                  failures: list[LintFailure], fail_on: Severity, inputs: RunInputs) -> None:
-    """Render the report in the chosen format to --output-file or stdout."""
-    colour = not ns.output_file and _use_colour(sys.stdout)
-    text = _render_report(ns.format, ns.statistics, results, failures, fail_on, colour)
-    if text is None:  # coloured text straight to the terminal
-        write_text(sys.stdout, results, failures, colour=_use_colour(sys.stdout))
-    elif ns.output_file:
-        write_output(ns.output_file, text.encode("utf-8"), inputs)
-    else:
-        sys.stdout.write(text)
-
-
-def _render_report(fmt: str, statistics: bool, results: list[LintResult],
-                   failures: list[LintFailure], fail_on: Severity, colour: bool) -> str | None:
-    """The report text (None: text format for a terminal, written by `write_text`)."""
-    if statistics:
-        return (render_statistics_json if fmt == "json" else render_statistics_text)(results)
-    if fmt != "text":
-        return render_report(fmt, results, failures, fail_on)
-    return None if colour else render_text(results, failures)
-
-
-def _use_colour(stream: TextIO) -> bool:
-    """Colour on a terminal, unless NO_COLOR is set; FORCE_COLOR forces it."""
-    if os.environ.get("NO_COLOR"):
-        return False
-    if os.environ.get("FORCE_COLOR"):
-        return True
-    return bool(getattr(stream, "isatty", lambda: False)())

@@ -11,7 +11,6 @@ import logging
 import os
 from collections.abc import Iterable, Iterator, Sequence
 
-
 from robotdesc.cache_dir import read_regular_file
 from robotdesc.expansion.packages import enclosing_package
 from robotdesc.rules.package_files import (

@@ -22,9 +22,11 @@ from typing import Any, Callable, Mapping, Sequence
 
 from robotdesc.errors import InputError, OptionError, UsageError, WorkerCrashed
 from robotdesc.expansion import ExpandOptions
-from robotdesc.linting.driver import lint_file
-from robotdesc.linting import result_cache
 from robotdesc.expansion.packages import package_lookup
+from robotdesc.linting import result_cache
+from robotdesc.linting.cached import cached_result as cached_result  # re-exported
+from robotdesc.linting.cached import target_key
+from robotdesc.linting.driver import lint_file
 from robotdesc.linting.inputs import inputs_locator, meshes_resolve, run_inputs
 from robotdesc.linting.result import LintFailure, LintResult
 from robotdesc.linting.targets import LintTarget
@@ -171,26 +173,6 @@ def _lint_task(item: tuple[Any, ...]) -> Outcome | _Crash:
     return _lint_one(*item)
 
 
-def _key(target: LintTarget, args: Mapping[str, str], expand_options: ExpandOptions | None,
-         select: Sequence[str] | None, ignore: Sequence[str]) -> result_cache.CacheKey | None:
-    """The whole-result cache key of one target (its own settings, as `_lint_one` lints)."""
-    return result_cache.result_key(
-        target.path, config=target.config, args={**dict(target.args), **dict(args)},
-        variant=target.variant, select=select, ignore=tuple(ignore),
-        expand_options=expand_options)
-
-
-def cached_result(target: LintTarget, args: Mapping[str, str],
-                  expand_options: ExpandOptions | None,
-                  select: Sequence[str] | None, ignore: Sequence[str]) -> LintResult | None:
-    """The stored result of `target` when none of its inputs changed (else None)."""
-    hit = result_cache.load(_key(target, args, expand_options, select, ignore), target.path)
-    if hit is None:
-        return None
-    log.info("%s: unchanged since the last lint (result cache)", target.name())
-    return dataclasses.replace(hit, variant=target.variant)
-
-
 def _lint_one(target: LintTarget, args: dict[str, str], expand_options: ExpandOptions | None,
               select: Sequence[str] | None,
               ignore: tuple[str, ...], keep_exceptions: bool = False) -> Outcome | _Crash:
@@ -231,7 +213,7 @@ def lint_target(target: LintTarget, args: Mapping[str, str],
                         expanded=result.expanded, robot=result.robot,
                         package_paths=package_paths, package_map=package_map, locator=locator)
     result = dataclasses.replace(result, variant=target.variant, inputs=inputs)
-    result_cache.store(_key(target, args, expand_options, select, tuple(ignore)),
+    result_cache.store(target_key(target, args, expand_options, select, tuple(ignore)),
                        dataclasses.replace(result, expanded=None, robot=None),
                        started_ns=started_ns,
                        env_names=[used.name for used in

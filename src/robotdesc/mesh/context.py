@@ -14,6 +14,8 @@ Plain Python: when every mesh summary comes from the cache, nothing here imports
 from __future__ import annotations
 
 import logging
+import math
+import os
 from collections.abc import Iterator
 from dataclasses import dataclass
 
@@ -167,7 +169,7 @@ class MeshContext:
         if not resolution.ok or resolution.path is None:
             return MeshLookup(ref, resolution)
         try:
-            summary = analyze_mesh_file(resolution.path, ref.scale, self._limits, self._cache)
+            summary = _summary(resolution.path, tuple(ref.scale), self._limits, self._cache)
         except MeshError as error:
             return MeshLookup(ref, resolution, error=error)
         return MeshLookup(ref, resolution, summary)
@@ -214,25 +216,25 @@ class MeshContext:
             notes.append(f"no {wanted} geometry: measured the {other} geometry")
         if not shapes:
             return LinkGeometry(link.name, "", None, None, notes=("no geometry",))
-        parts, boxes, unmeasured, estimated = [], [], [], False
-        for shape in shapes:
-            measured = self._shape_properties(shape)
-            if isinstance(measured, str):
-                unmeasured.append(measured)
-                continue
-            props, box, hull = measured
-            estimated = estimated or hull
-            parts.append(props.transformed(shape.origin.xyz, shape.origin.rpy))
-            boxes.append(moved_bounds(box, shape.origin.xyz, shape.origin.rpy))
-        if not parts:
-            return LinkGeometry(link.name, source, None, None, tuple(unmeasured),
-                                notes=tuple(notes))
-        low = tuple(min(b[0][i] for b in boxes) for i in range(3))
-        high = tuple(max(b[1][i] for b in boxes) for i in range(3))
+        measured = tuple((self._shape_properties(shape), shape.origin.xyz, shape.origin.rpy)
+                         for shape in shapes)
+        # -0.0 equals 0.0 as a key, but the zeros' signs of the result may differ: not kept
+        keep = not any(v == 0.0 and math.copysign(1.0, v) < 0.0
+                       for shape in shapes for v in (*shape.origin.xyz, *shape.origin.rpy))
+        combined = _COMBINED.get(measured) if keep else None
+        if combined is None:
+            combined = _combine(measured)
+            if keep:
+                if len(_COMBINED) >= _COMBINED_ENTRIES:
+                    _COMBINED.clear()
+                _COMBINED[measured] = combined
+        properties, bounds, unmeasured, estimated = combined
+        if properties is None:
+            return LinkGeometry(link.name, source, None, None, unmeasured, notes=tuple(notes))
         if estimated:
             notes.append("part of it is a convex-hull estimate (a mesh is not a closed surface)")
-        return LinkGeometry(link.name, source, combine(parts), (low, high),  # type: ignore[arg-type]
-                            tuple(unmeasured), estimated, tuple(notes))
+        return LinkGeometry(link.name, source, properties, bounds, unmeasured, estimated,
+                            tuple(notes))
 
     def _shape_properties(self, shape: Visual | Collision
                           ) -> tuple[MassProperties, tuple[Vec3, Vec3], bool] | str:
@@ -257,6 +259,70 @@ class MeshContext:
             return str(error)
         half = _primitive_half_extent(geometry)
         return props, ((-half[0], -half[1], -half[2]), half), False
+
+
+#: (path, device, inode, size, modification and change times (ns), scale, limits, the mesh
+#: cache's folder) -> the summary of that file (or why it is no mesh), for this process.
+_SUMMARIES: dict[tuple[object, ...], MeshSummary | MeshError] = {}
+_SUMMARY_ENTRIES = 10_000
+
+
+def _summary(path: str, scale: tuple[float, ...], limits: MeshLimits,
+             cache: MeshCache | None) -> MeshSummary:
+    """`analyze_mesh_file`, remembered in this process under the file's identity (as
+    `os.stat` gives it), so that the variants of a description and an editor's saves neither
+    hash nor read a mesh file again until it changes.
+
+    Raises:
+        MeshError: the file cannot be used as a mesh.
+    """
+    try:
+        info = os.stat(path)
+    except OSError:
+        return analyze_mesh_file(path, scale, limits, cache)
+    key = (path, info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns, info.st_ctime_ns,
+           scale, limits, None if cache is None else str(cache.directory))  # a cache gets it
+    found = _SUMMARIES.get(key)
+    if found is None:
+        try:
+            found = analyze_mesh_file(path, scale, limits, cache)
+        except MeshError as error:
+            found = error
+        if len(_SUMMARIES) >= _SUMMARY_ENTRIES:
+            _SUMMARIES.clear()
+        _SUMMARIES[key] = found
+    if isinstance(found, MeshError):
+        raise found.with_traceback(None)
+    return found
+
+
+#: One shape as `_measure` combines it: its properties at density 1, local bounds and
+#: whether they are a hull estimate (or why it cannot be measured), and its origin.
+_Measured = tuple[tuple[MassProperties, tuple[Vec3, Vec3], bool] | str, Vec3, Vec3]
+#: A link's shapes combined: (properties, bounds, unmeasured, estimated).
+_Combined = tuple[MassProperties | None, tuple[Vec3, Vec3] | None, tuple[str, ...], bool]
+#: Combinations already computed in this process, by their shapes' values: the variants of a
+#: description and an editor's saves measure the same links again and again.
+_COMBINED: dict[tuple[_Measured, ...], _Combined] = {}
+_COMBINED_ENTRIES = 100_000
+
+
+def _combine(measured: tuple[_Measured, ...]) -> _Combined:
+    """The shapes' properties moved to the link frame and summed, and their bounds."""
+    parts, boxes, unmeasured, estimated = [], [], [], False
+    for found, xyz, rpy in measured:
+        if isinstance(found, str):
+            unmeasured.append(found)
+            continue
+        props, box, hull = found
+        estimated = estimated or hull
+        parts.append(props.transformed(xyz, rpy))
+        boxes.append(moved_bounds(box, xyz, rpy))
+    if not parts:
+        return None, None, tuple(unmeasured), False
+    low = tuple(min(b[0][i] for b in boxes) for i in range(3))
+    high = tuple(max(b[1][i] for b in boxes) for i in range(3))
+    return combine(parts), (low, high), tuple(unmeasured), estimated  # type: ignore[return-value]
 
 
 def _shapes(link: Link, kind: str) -> tuple[Visual | Collision, ...]:

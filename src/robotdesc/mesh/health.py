@@ -84,20 +84,14 @@ def _merge_close_rims(topo: Topology, tolerance: float
                       ) -> tuple[np.ndarray, np.ndarray] | None:
     """(vertices, faces) with rim vertices within `tolerance` of each other merged, or None
     when no two are that close."""
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-    from scipy.spatial import cKDTree
-
     single = topo.edge_uses == 1
     rim = np.unique(np.concatenate((topo.edge_low[single], topo.edge_high[single])))
     if tolerance <= 0 or len(rim) < 2:
         return None
-    pairs = cKDTree(topo.vertices[rim]).query_pairs(tolerance, output_type="ndarray")
+    pairs = _close_pairs(topo.vertices[rim], tolerance)
     if len(pairs) == 0:
         return None
-    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])),
-                       shape=(len(rim), len(rim)))
-    _, labels = connected_components(graph, directed=False)
+    labels = _components(pairs[:, 0], pairs[:, 1], len(rim))
     first = np.full(labels.max() + 1, len(rim))
     np.minimum.at(first, labels, np.arange(len(rim)))
     representative = np.arange(len(topo.vertices))
@@ -218,15 +212,53 @@ def _repeated(faces: np.ndarray) -> np.ndarray:
     return repeated
 
 
+#: Up to this many points, `_close_pairs` compares every pair with numpy (a few ms) rather
+#: than importing scipy's k-d tree (about 0.2 s of imports in a fresh process).
+_BRUTE_FORCE_POINTS = 2048
+
+
+def _close_pairs(points: np.ndarray, tolerance: float) -> np.ndarray:
+    """(i, j) with i < j for every two points within `tolerance` (Euclidean) of each other,
+    as an (n, 2) integer array."""
+    if len(points) > _BRUTE_FORCE_POINTS:
+        from scipy.spatial import cKDTree
+
+        found: np.ndarray = cKDTree(points).query_pairs(tolerance, output_type="ndarray")
+        return found
+    points = np.asarray(points, dtype=np.float64)
+    limit = tolerance * tolerance
+    chunks = []
+    for start in range(0, len(points) - 1, 256):
+        block = points[start:start + 256]
+        squared = ((block[:, None, :] - points[None, :, :]) ** 2).sum(axis=2)
+        rows, cols = np.nonzero(squared <= limit)
+        rows += start
+        keep = cols > rows
+        chunks.append(np.stack((rows[keep], cols[keep]), axis=1))
+    return np.concatenate(chunks) if chunks else np.zeros((0, 2), dtype=np.int64)
+
+
+def _components(a: np.ndarray, b: np.ndarray, vertex_count: int) -> np.ndarray:
+    """Connected-component label per vertex of the undirected graph of edges a - b: the
+    lowest vertex index of its component (numpy only: hook roots, then compress paths)."""
+    labels = np.arange(vertex_count)
+    while True:
+        before = labels.copy()
+        low = np.minimum(labels[a], labels[b])
+        np.minimum.at(labels, labels[a], low)
+        np.minimum.at(labels, labels[b], low)
+        while True:
+            jumped = labels[labels]
+            if np.array_equal(jumped, labels):
+                break
+            labels = jumped
+        if np.array_equal(labels, before):
+            return labels
+
+
 def _loop_labels(a: np.ndarray, b: np.ndarray, vertex_count: int) -> np.ndarray:
     """Connected-component label per vertex of the graph of edges a - b."""
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-
-    graph = coo_matrix((np.ones(len(a)), (a, b)), shape=(vertex_count, vertex_count))
-    labels: np.ndarray
-    _, labels = connected_components(graph, directed=False)
-    return labels
+    return _components(a, b, vertex_count)
 
 
 def _count_loops(topo: Topology) -> int:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import logging
 import math
+import os
 import re
 from collections.abc import Callable
 from dataclasses import replace
@@ -135,11 +136,13 @@ class _RobotReader:
         self.files = files
         self.positions = positions or {}
         self.limits = limits
-        self._columns = _ColumnFinder()
         self.issues: list[ValueIssue] = []
         self._decoded: dict[tuple[str, str], Provenance] = {}
-        self._spans: dict[str, Span] = {}
-        self._chains: dict[str, tuple[Span, ...]] = {}
+        shared = _decodings(files)
+        self._columns = shared.columns
+        self._spans = shared.spans
+        self._chains = shared.chains
+        self._earlier = shared.decoded
 
     # -- provenance -------------------------------------------------------------------------
 
@@ -151,7 +154,8 @@ class _RobotReader:
                 key = (value, element.tag)
                 found = self._decoded.get(key)
                 if found is None:
-                    found = self._decode(value, element, inherited)
+                    found = self._earlier_decoding(key) or self._decode(value, element,
+                                                                        inherited)
                 return found
             if inherited is not None:
                 return inherited
@@ -186,7 +190,17 @@ class _RobotReader:
         col = self._columns.column(span, _tag(element))
         found = self._decoded[(value, element.tag)] = Provenance(
             Span(span.path, span.line, col) if col else span, chain, passed)
+        self._earlier[(value, element.tag)] = (found, self._columns.state(span.path))
         return found
+
+    def _earlier_decoding(self, key: tuple[str, str]) -> Provenance | None:
+        """The provenance an earlier parse with this file table decoded for the same
+        attribute and tag, when the file its column was read from is unchanged."""
+        earlier = self._earlier.get(key)
+        if earlier is None or self._columns.state(earlier[0].span.path) != earlier[1]:
+            return None
+        self._decoded[key] = earlier[0]
+        return earlier[0]
 
     # -- values -----------------------------------------------------------------------------
 
@@ -561,28 +575,83 @@ def _clip(text: str, limit: int = 80) -> str:
     return text if len(text) <= limit else f"{text[:limit]}... ({len(text)} characters)"
 
 
+#: A source file's state as `os.stat` gives it (size, modification and change times in ns,
+#: inode), or None when it cannot be read.
+_FileState = tuple[int, int, int, int] | None
+
+
 class _ColumnFinder:
     """The column of an element's start tag on its source line (for expanded xacro, whose
-    provenance carries lines only): the first `<tag` on the line, else 0."""
+    provenance carries lines only): the first `<tag` on the line, else 0. A file's lines are
+    read again when its state changed (a finder outlives a parse: see `_decodings`); its
+    state is taken once per parse (`new_parse`)."""
 
     def __init__(self) -> None:
-        self._lines: dict[str, list[str]] = {}
+        self._lines: dict[str, tuple[_FileState, list[str]]] = {}
+        self._states: dict[str, _FileState] = {}
+
+    def new_parse(self) -> None:
+        """Look at the files again (they may have been saved since the last parse)."""
+        self._states = {}
+
+    def state(self, path: str) -> _FileState:
+        """The file's state, as this parse first saw it."""
+        if path not in self._states:
+            try:
+                info = os.stat(path)
+                self._states[path] = (info.st_size, info.st_mtime_ns, info.st_ctime_ns,
+                                      info.st_ino)
+            except OSError:
+                self._states[path] = None
+        return self._states[path]
 
     def column(self, span: Span, tag: str) -> int:
         if not span.line:
             return 0
-        lines = self._lines.get(span.path)
-        if lines is None:
+        state = self.state(span.path)
+        known = self._lines.get(span.path)
+        if known is None or known[0] != state:
             try:
                 with open(span.path, encoding="utf-8", errors="replace") as handle:
                     lines = handle.read(MAX_SOURCE_CHARS).splitlines()
             except OSError:
                 lines = []
-            self._lines[span.path] = lines
+            known = self._lines[span.path] = (state, lines)
+        lines = known[1]
         if span.line > len(lines):
             return 0
         match = re.search(rf"<(?:[\w.-]+:)?{re.escape(tag)}(?=[\s/>]|$)", lines[span.line - 1])
         return match.start() + 1 if match else 0
+
+
+class _Decodings:
+    """What parses with one file table share: decoded positions and call chains (functions
+    of the attribute text and the table alone), each attribute's provenance with the state
+    of the file its column was read from, and the column finder."""
+
+    def __init__(self) -> None:
+        self.spans: dict[str, Span] = {}
+        self.chains: dict[str, tuple[Span, ...]] = {}
+        self.decoded: dict[tuple[str, str], tuple[Provenance, _FileState]] = {}
+        self.columns = _ColumnFinder()
+
+
+#: File table -> its decodings, for up to a few tables (the variants of a description and an
+#: editor's saves parse expansions with the same table again and again).
+_SHARED: dict[tuple[str, ...], _Decodings] = {}
+_SHARED_TABLES = 8
+
+
+def _decodings(files: tuple[str, ...]) -> _Decodings:
+    """The shared decodings of this file table, ready for a new parse."""
+    found = _SHARED.get(files)
+    if found is None:
+        found = _Decodings()
+        if len(_SHARED) >= _SHARED_TABLES:
+            _SHARED.clear()  # (safe while another thread parses: no iteration)
+        _SHARED[files] = found
+    found.columns.new_parse()
+    return found
 
 
 #: Characters of a source file read to find columns.

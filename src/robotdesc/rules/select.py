@@ -9,9 +9,12 @@ tie `ignore` wins. So `select = ["J"]` with `ignore = ["J1"]` runs J2xx only, an
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
+from typing import TYPE_CHECKING
 
 from robotdesc.errors import UsageError
-from robotdesc.rules.registry import Rule
+
+if TYPE_CHECKING:
+    from robotdesc.rules.registry import Rule
 
 _EXACT = 1000  # specificity of a full code or a rule name
 
