@@ -5,12 +5,15 @@ from __future__ import annotations
 import html
 import os
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.errors import InputError, RuleCrashed
-from robotdesc.expansion.result import Expanded
-from robotdesc.model.elements import Robot
 from robotdesc.output import RunInputs
+
+if TYPE_CHECKING:  # the model is not imported by a lint answered from the result cache
+    from robotdesc.expansion.result import Expanded
+    from robotdesc.model.elements import Robot
 
 __all__ = ["LintFailure", "LintResult", "RuleCrashed"]  # RuleCrashed: robotdesc.errors
 
