@@ -20,8 +20,8 @@ ROOT = Path(__file__).resolve().parents[1]
 pytest.importorskip("mypy", reason="mypy comes with the test extra: pip install '.[test]'")
 
 
-def _overrides() -> list[dict]:
-    return tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["mypy"]["overrides"]
+def _mypy() -> dict:
+    return tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["mypy"]
 
 
 def test_mypy_passes(tmp_path: Path) -> None:
@@ -30,9 +30,8 @@ def test_mypy_passes(tmp_path: Path) -> None:
     assert run.returncode == 0, run.stdout + run.stderr
 
 
-def test_the_core_is_strict_and_no_module_is_excused() -> None:
-    strict = next(o for o in _overrides() if o.get("strict"))["module"]
-    core = ("robotdesc.source", "robotdesc.errors", "robotdesc.diagnostics", "robotdesc.spatial",
-            "robotdesc.model.*", "robotdesc.rules.*")
-    assert set(core) <= set(strict)
-    assert not [o for o in _overrides() if o.get("ignore_errors")]
+def test_the_whole_package_is_strict_and_no_module_is_excused() -> None:
+    config = _mypy()
+    assert config.get("strict") is True and config.get("files") == ["src/robotdesc"]
+    overrides = config.get("overrides", [])
+    assert not [o for o in overrides if o.get("ignore_errors") or o.get("strict") is False]
