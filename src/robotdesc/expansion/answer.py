@@ -130,8 +130,8 @@ def parse_failure(answer: dict[str, object], top: Path) -> tuple[errors.InputErr
 
 
 def parse_expanded(answer: dict[str, object], top: Path, args: dict[str, str],
-                   max_output_bytes: int) -> tuple[Expanded, list[str]]:
-    """The expansion a success answer carries, and every path it names."""
+                   max_output_bytes: int) -> Expanded:
+    """The expansion a success answer carries (its paths: `expanded_paths`)."""
     reader = _Reader(top)
     xml = _text(answer.get("xml"), "xml", top, max_output_bytes)
     files = tuple(reader.path(v, "files") for v in _list(answer.get("files"), "files", top))
@@ -154,16 +154,15 @@ def parse_expanded(answer: dict[str, object], top: Path, args: dict[str, str],
                    reader.span(span, "env_defaults") or Span(str(top)))
         for name, default, span in reader.rows(answer.get("env_defaults", []),
                                                "env_defaults", 3))
-    expanded = Expanded(
+    return Expanded(
         source=str(top), xml=xml.encode("utf-8"), files=files, files_read=files_read,
         packages=packages, macro_recursion=recursion, from_xacro=True,
         args=tuple(sorted(args.items())), declared_args=declared,
         read_args=reader.texts(answer.get("read_args", []), "read_args"),
         env_defaults=env_defaults)
-    return expanded, reader.paths
 
 
-def justified(name: str, roots: Iterable[str]) -> bool:
+def justified(name: str, roots: tuple[str, ...]) -> bool:
     """True when the parent itself can vouch for `name` as part of the description: an
     absolute path whose real path lies inside `roots` and is a regular file (or xacro's
     `<string>`)."""
@@ -171,7 +170,7 @@ def justified(name: str, roots: Iterable[str]) -> bool:
         return True
     if not os.path.isabs(name) or "\x00" in name:
         return False
-    if not is_within(name, tuple(roots)):
+    if not is_within(name, roots):
         return False
     try:
         return stat.S_ISREG(os.stat(name).st_mode)
@@ -207,7 +206,7 @@ def expanded_paths(expanded: Expanded) -> list[str]:
 
 
 def check_expanded(expanded: Expanded, roots: Roots, top: Path, max_chain: int) -> None:
-    """Every check on a whole expansion (one read back from the cache, say).
+    """Every check on a whole expansion: a worker's answer, or one read back from the cache.
 
     Raises:
         InvalidAnswer: a path or package the parent cannot justify, malformed provenance.

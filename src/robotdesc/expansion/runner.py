@@ -15,7 +15,7 @@ from robotdesc import errors
 from robotdesc.expansion import confine
 from robotdesc.expansion.answer import (
     MAX_TEXT,
-    check_packages,
+    check_expanded,
     check_paths,
     check_provenance,
     invalid,
@@ -141,7 +141,7 @@ def run_worker(path: Path, args: dict[str, str], resolver: PackageResolverConfig
             f"the xacro worker wrote more than {answer_cap(limits.max_output_bytes)} bytes of "
             "answer and was stopped (the output-size limit)", Span(str(path)))
     if proc.returncode != 0 or not exchanged.out:
-        raise _crash(proc.returncode, path, limits, trusted)
+        raise _crash(proc.returncode, path, limits)
     return _accept(exchanged.out, path, args, roots, trusted, limits)
 
 
@@ -172,11 +172,11 @@ def _accept(out: bytes, path: Path, args: dict[str, str], roots: Roots, trusted:
         if answer.get("kind") == "InternalError":
             log.debug("worker traceback:\n%s", str(answer.get("traceback", ""))[:MAX_TEXT])
         raise failure
-    expanded, named = parse_expanded(answer, path, args, limits.max_output_bytes)
-    check_provenance(expanded, path, max_chain(limits.max_macro_depth))
-    if not trusted:
-        check_paths(named, roots, path)
-        check_packages(expanded, roots, path)
+    expanded = parse_expanded(answer, path, args, limits.max_output_bytes)
+    if trusted:
+        check_provenance(expanded, path, max_chain(limits.max_macro_depth))
+    else:
+        check_expanded(expanded, roots, path, max_chain(limits.max_macro_depth))
     return expanded
 
 
@@ -189,8 +189,7 @@ def _garbled(path: Path, trusted: bool) -> errors.InputError:
     return invalid(path, "garbled: not the JSON object the worker writes")
 
 
-def _crash(returncode: int, path: Path, limits: WorkerLimits,
-           trusted: bool) -> errors.RobotdescError:
+def _crash(returncode: int, path: Path, limits: WorkerLimits) -> errors.RobotdescError:
     if returncode == -signal.SIGSYS:
         return errors.SandboxViolation(
             "the sandbox stopped the xacro worker: an expression made a system call it "
