@@ -169,10 +169,10 @@ def _signals_remove(temporary: str) -> Iterator[None]:
         for number, handler in previous.items():
             signal.signal(number, handler)
     if caught is not None:
-        _deliver(caught, previous.get(caught))
+        deliver_signal(caught, previous.get(caught))
 
 
-def _deliver(signum: int, handler: object) -> None:
+def deliver_signal(signum: int, handler: object) -> None:
     """Give a caught signal its previous handling: a Python handler is called (SIGINT's
     default raises KeyboardInterrupt); the default action is taken by re-sending it."""
     if callable(handler):

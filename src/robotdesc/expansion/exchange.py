@@ -26,6 +26,8 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from types import FrameType
 
+from robotdesc.atomic import deliver_signal
+
 log = logging.getLogger(__name__)
 
 #: Bytes of the worker's messages (stderr) kept; the rest is counted and dropped.
@@ -167,8 +169,4 @@ def worker_group(proc: subprocess.Popen[bytes]) -> Iterator[None]:
             signal.signal(number, handler)  # type: ignore[arg-type]
     if ended is not None:
         log.debug("signal %d: the xacro worker was killed with its group", ended)
-        handler = previous.get(ended)
-        if callable(handler):
-            handler(ended, None)
-        os.kill(os.getpid(), ended)
-        raise SystemExit(128 + ended)
+        deliver_signal(ended, previous.get(ended))
