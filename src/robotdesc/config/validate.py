@@ -15,7 +15,7 @@ from robotdesc.config.schema import KEYS, Config, SimSettings, TargetSpec
 from robotdesc.diagnostics import Severity
 from robotdesc.mesh.settings import MeshSettings
 from robotdesc.rules.select import find_rule, unknown_selectors
-from robotdesc.trust import is_broad_folder, real_within
+from robotdesc.trust import is_broad_folder, leaves_tree
 
 if TYPE_CHECKING:
     from robotdesc.rules.registry import Rule
@@ -227,7 +227,7 @@ def _inside_tree(path: str, what: str, key: str, where: Locator, tree: str | Non
     """Refuse a path a config found in the scanned tree may not name (see `tree`)."""
     if tree is None:
         return
-    if is_broad_folder(path) or not real_within(path, (os.path.realpath(tree),)):
+    if is_broad_folder(path) or leaves_tree(path, tree):
         raise where.error(key, f"{what} names '{path}', outside the repository that holds "
                                f"this config ({tree}); a config inside the scanned tree may "
                                "only name folders inside it. Name other folders with "

@@ -15,8 +15,13 @@ from dataclasses import dataclass
 
 from robotdesc.cache_dir import read_regular_file
 from robotdesc.errors import InputError, UsageError
-from robotdesc.expansion.packages import enclosing_package
-from robotdesc.linting.targets import LintTarget, include_path, target_name, xacro_name
+from robotdesc.linting.targets import (
+    LintTarget,
+    include_path,
+    read_roots,
+    target_name,
+    xacro_name,
+)
 from robotdesc.trust import real_within
 from robotdesc.xml_input import MAX_XML_FILE_BYTES, parse_xml
 
@@ -54,10 +59,7 @@ def declared_arguments(path: str, packages: Mapping[str, str] | None = None
     """
     names: list[str] = []
     top = os.path.abspath(path)
-    found = enclosing_package(top)
-    # read only inside the description's packages: never a file a symlink or `../` leads to
-    roots = tuple(os.path.realpath(folder) for folder in (
-        str(found[1]) if found else os.path.dirname(top), *(packages or {}).values()))
+    roots = read_roots(top, packages or {})
     todo, seen = [top], set()
     complete, xacro = True, path.endswith(".xacro")
     while todo:

@@ -23,7 +23,7 @@ import glob
 import logging
 import os
 import re
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Literal, TypeAlias
@@ -392,7 +392,7 @@ def _makes_something(path: str, root: XmlElement, packages: dict[str, str], seen
         real = os.path.realpath(included)
         if real in seen:
             continue
-        if not real_within(included, _read_roots(path, packages)):
+        if not real_within(included, read_roots(path, packages)):
             return True  # out of the packages (`../`, a symlink): not read, assumed a robot
         sub = _read_root(included)
         if sub is None or _makes_something(included, sub, packages, seen | {real}, depth + 1):
@@ -400,9 +400,10 @@ def _makes_something(path: str, root: XmlElement, packages: dict[str, str], seen
     return False
 
 
-def _read_roots(including: str, packages: dict[str, str]) -> tuple[str, ...]:
-    """Where a search may read an included file: the including file's package (or folder)
-    and the packages found under the searched folder."""
+def read_roots(including: str, packages: Mapping[str, str]) -> tuple[str, ...]:
+    """Where the parent may read a file `including` includes, without expanding: the
+    including file's package (or folder) and `packages` (real paths); never a file a
+    symlink or `../` leads out to."""
     found = enclosing_package(including)
     own = str(found[1]) if found else os.path.dirname(os.path.abspath(including))
     return tuple(os.path.realpath(folder) for folder in (own, *packages.values()))
