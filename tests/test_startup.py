@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import os
 import subprocess
+import time
 import sys
 from pathlib import Path
 
@@ -103,3 +104,25 @@ def test_a_warm_lint_reads_the_result_cache_and_imports_no_checker(tmp_path: Pat
     env = dict(os.environ, ROBOTDESC_CACHE_DIR=str(tmp_path / "cache"))
     _imported("lint", "-q", str(robot), env=env)  # cold: fills the cache
     assert _offending(_imported("lint", "-q", str(robot), env=env), NOT_FOR_A_WARM_LINT) == []
+
+
+#: Not imported by the replay of an unchanged lint either: neither the argument parser nor
+#: the lint command, the result cache or the config schema (`commands/lint_replay.py`).
+NOT_FOR_A_REPLAY = NOT_FOR_A_WARM_LINT + (
+    "argparse", "robotdesc.commands.lint", "robotdesc.linting", "robotdesc.config.schema",
+    "robotdesc.config.validate", "robotdesc.expansion", "robotdesc.report")
+
+
+def test_a_third_identical_lint_is_a_replay_that_imports_no_lint_module(
+        tmp_path: Path) -> None:
+    robot = tmp_path / "r.urdf"
+    robot.write_text("<robot name='r'><link name='a'><inertial><mass value='1'/><inertia "
+                     "ixx='1' ixy='0' ixz='0' iyy='1' iyz='0' izz='1'/></inertial></link>"
+                     "</robot>")
+    written = time.time()
+    env = dict(os.environ, ROBOTDESC_CACHE_DIR=str(tmp_path / "cache"))
+    _imported("lint", "-q", str(robot), env=env)  # cold: fills the result cache
+    time.sleep(max(0.0, written + 2.2 - time.time()))  # the file settles (SETTLE_NS)
+    _imported("lint", "-q", str(robot), env=env)  # from the result cache: recorded
+    assert list((tmp_path / "cache" / "replay").rglob("*.json"))
+    assert _offending(_imported("lint", "-q", str(robot), env=env), NOT_FOR_A_REPLAY) == []

@@ -10,6 +10,11 @@ import os
 
 __version__ = "0.1.0"
 
+#: Backends whose version can change what a lint finds (their installed file stands for it,
+#: `module_stamp`): part of the key of every cache that stores findings.
+FINDING_BACKENDS = ("xacro", "lxml", "numpy", "trimesh", "collada", "pinocchio", "coal",
+                    "manifold3d")
+
 
 @functools.cache
 def code_id() -> str:

@@ -10,16 +10,21 @@ commands, and the failure renderer only when an input fails (tests/test_startup.
 
 from __future__ import annotations
 
-import argparse
 import importlib
 import logging
 import os
 import sys
 from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING
 
 from robotdesc._version import __version__
 from robotdesc.commands import COMMAND_HELP, COMMAND_MODULES, modules_for
 from robotdesc.commands.exit_codes import EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_OK
+
+if TYPE_CHECKING:
+    import argparse
+
+    from robotdesc.commands.lint_replay import Recording, ReplayRecord
 
 BUG_REPORT_URL = "https://github.com/robotdesc/robotdesc/issues"
 
@@ -27,6 +32,19 @@ BUG_REPORT_URL = "https://github.com/robotdesc/robotdesc/issues"
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit code (the console script exits with it)."""
     words = list(sys.argv[1:] if argv is None else argv)
+    if words[:1] != ["lint"]:
+        return _main(words, None)
+    from robotdesc.commands import lint_replay  # only for a lint (--version must not pay)
+
+    replayed = lint_replay.replay(words)  # an unchanged lint: what the last identical run said
+    if replayed is not None:
+        return replayed
+    return _main(words, lint_replay.Recording(words))
+
+
+def _main(words: list[str], recording: Recording | None) -> int:
+    """Parse and run the command line; a lint under `recording`, stored for its replay when
+    the whole-result cache answered it (`commands/lint_replay.py`)."""
     parser = build_parser(words)
     if not words:  # bare `robotdesc`: what it can do
         parser.print_help(sys.stdout)
@@ -36,6 +54,18 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SystemExit as exc:  # --help, --version (0) and usage errors (2)
         return exc.code if isinstance(exc.code, int) else EXIT_INPUT
     verbose: int = getattr(ns, "verbose", 0)
+    if recording is None:
+        return _logged_run(ns, verbose)
+    with recording:
+        code = _logged_run(ns, verbose)
+    record: ReplayRecord | None = getattr(ns, "replay", None)
+    if record is not None:
+        recording.store(words, record, code)
+    return code
+
+
+def _logged_run(ns: argparse.Namespace, verbose: int) -> int:
+    """`_run` with robotdesc's messages logged to stderr."""
     restore = _configure_logging(verbose)
     try:
         return _run(ns, verbose)
@@ -109,6 +139,8 @@ def build_parser(argv: Sequence[str] | None = None) -> argparse.ArgumentParser:
     complete. Given one: only the subcommand it names (`modules_for`); when it names none
     (`--version`, `--help`, a typo), every subcommand as a name and its help only, without
     importing a command module."""
+    import argparse  # here, not at the top: the replay of an unchanged lint parses nothing
+
     parser = argparse.ArgumentParser(
         prog="robotdesc",
         description="Expand xacro without ROS, and lint robot descriptions (URDF/xacro).",

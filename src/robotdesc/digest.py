@@ -9,6 +9,11 @@ import stat
 
 _BLOCK = 1 << 20  # bytes read at a time
 
+#: A file's identity as `lstat` gives it: (device, inode, size in bytes, modification time
+#: and change time in ns). While it is the same, so is the content, except within the
+#: timestamp granularity of a write (caches that trust it leave recently changed files out).
+FileStamp = tuple[int, int, int, int, int]
+
 
 def bytes_digest(data: bytes) -> str:
     """The SHA-256 of `data`, as hex."""
@@ -37,3 +42,14 @@ def file_digest(path: str, *, follow_symlinks: bool = True) -> str | None:
         return None
     finally:
         os.close(handle)
+
+
+def file_stamp(path: str) -> FileStamp | None:
+    """The identity of a regular file that is no symlink (`lstat`), or None."""
+    try:
+        info = os.lstat(path)
+    except OSError:
+        return None
+    if not stat.S_ISREG(info.st_mode):
+        return None
+    return (info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns, info.st_ctime_ns)

@@ -16,6 +16,7 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 from robotdesc.commands.inputs import expand_options, split_inputs
+from robotdesc.commands.lint_replay import CheckedFile, ReplayRecord, argument
 from robotdesc.commands.lint_report import (
     finish,
     known_inputs,
@@ -109,6 +110,7 @@ def run_lint(ns: argparse.Namespace) -> int:
 
     targets: list[LintTarget] = []
     failures: list[LintFailure] = []
+    searched = False
     for raw in paths:
         try:
             discovery = discover_targets(raw, explicit)
@@ -116,6 +118,7 @@ def run_lint(ns: argparse.Namespace) -> int:
             failures.append(LintFailure(raw, exc))
             continue
         if discovery.directory:
+            searched = True
             write_discovery(sys.stderr, discovery)
         failures.extend(LintFailure(link, InputError(
             "a symlink whose target lies outside the linted folder; not read", Span(link)))
@@ -133,7 +136,22 @@ def run_lint(ns: argparse.Namespace) -> int:
     for result in results:
         if result.inputs is not None:  # always, for a result read from the cache
             inputs += result.inputs
+    if not (failures or searched or ns.output_file):
+        ns.replay = _replay_record(paths, inputs)
     return finish(ns, targets, results, failures, inputs)
+
+
+def _replay_record(paths: Sequence[str], inputs: RunInputs) -> ReplayRecord | None:
+    """What lets the next identical run replay this one (`commands/lint_replay.py`): every
+    file the answer depended on, as the result cache verified it in this run; None when one
+    was not verified here."""
+    files = []
+    for item in inputs.items:
+        checked = result_cache.checked_digest(item.path)
+        if checked is None:
+            return None
+        files.append(CheckedFile(item.path, *checked))
+    return ReplayRecord(tuple(files), tuple(argument(path) for path in paths))
 
 
 def _answers_from_cache(ns: argparse.Namespace, targets: list[LintTarget],

@@ -41,17 +41,32 @@ against a type hint), `locate` (a key's TOML line, named by every `ConfigError`)
 
 from __future__ import annotations
 
-from robotdesc.config.discovery import (
-    CONFIG_FILES,
-    VCS_MARKERS,
-    discover_config,
-    find_config_file,
-    load_config,
-)
-from robotdesc.config.parse import MAX_TOML_DEPTH
-from robotdesc.config.schema import Config, SimSettings, TargetSpec
-from robotdesc.config.validate import config_from_mapping
-from robotdesc.mesh.settings import MeshSettings  # the `[meshes]` table (Config.meshes)
+import importlib
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from robotdesc.config.discovery import discover_config, load_config
+    from robotdesc.config.files import CONFIG_FILES, VCS_MARKERS, find_config_file
+    from robotdesc.config.parse import MAX_TOML_DEPTH
+    from robotdesc.config.schema import Config, SimSettings, TargetSpec
+    from robotdesc.config.validate import config_from_mapping
+    from robotdesc.mesh.settings import MeshSettings  # the `[meshes]` table (Config.meshes)
+
+#: Where each name of the package is defined: imported on first use, so that the replay of an
+#: unchanged lint can ask `config.files` without loading the schema and its validation.
+_EXPORTS = {
+    "CONFIG_FILES": "robotdesc.config.files",
+    "MAX_TOML_DEPTH": "robotdesc.config.parse",
+    "VCS_MARKERS": "robotdesc.config.files",
+    "Config": "robotdesc.config.schema",
+    "MeshSettings": "robotdesc.mesh.settings",
+    "SimSettings": "robotdesc.config.schema",
+    "TargetSpec": "robotdesc.config.schema",
+    "config_from_mapping": "robotdesc.config.validate",
+    "discover_config": "robotdesc.config.discovery",
+    "find_config_file": "robotdesc.config.files",
+    "load_config": "robotdesc.config.discovery",
+}
 
 __all__ = [
     "CONFIG_FILES",
@@ -66,3 +81,13 @@ __all__ = [
     "find_config_file",
     "load_config",
 ]
+
+
+def __getattr__(name: str) -> object:
+    """A name of the package, from the module that defines it (PEP 562)."""
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'robotdesc.config' has no attribute '{name}'")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value

@@ -43,10 +43,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from robotdesc._version import code_id, module_stamp
+from robotdesc._version import FINDING_BACKENDS, code_id, module_stamp
 from robotdesc.cache_dir import cache_folder, read_entry, write_entry
 from robotdesc.diagnostics import Diagnostic, Severity
-from robotdesc.digest import file_digest
+from robotdesc.digest import FileStamp, file_digest, file_stamp
 from robotdesc.expansion import DEFAULT_ENV_ALLOWLIST, ExpandOptions
 from robotdesc.linting.result import LintResult
 from robotdesc.output import RunInput, RunInputs
@@ -64,8 +64,6 @@ MAX_PATH = 4096
 MAX_TEXT = 1 << 20  # a message, an element name, a fix
 MAX_STACK = 100_000
 MAX_COUNT = 10**9
-#: Backends whose version can change what the rules find (their installed file stands for it).
-BACKENDS = ("xacro", "lxml", "numpy", "trimesh", "collada", "pinocchio", "coal", "manifold3d")
 #: Environment variables that decide package resolution (besides the explicit settings).
 RESOLVER_ENV = ("ROS_PACKAGE_PATH", "AMENT_PREFIX_PATH")
 #: Slack for file systems whose modification times are whole seconds (ns).
@@ -117,7 +115,7 @@ def result_key(target: str, *, config: object, args: Mapping[str, str],
     material = {
         "format": _FORMAT, "robotdesc": code_id(),
         "python": ".".join(map(str, sys.version_info[:3])),
-        "backends": [module_stamp(name) for name in BACKENDS],
+        "backends": [module_stamp(name) for name in FINDING_BACKENDS],
         "target": os.path.abspath(target), "args": sorted(args.items()),
         "variant": [list(pair) for pair in variant], "config": repr(config),
         "select": None if select is None else list(select), "ignore": list(ignore),
@@ -192,22 +190,27 @@ def _unchanged(path: str, digest: str) -> bool:
 
 def _digest(path: str) -> str | None:
     """The content digest of a file that is no symlink. Remembered in this process under the
-    file's identity (device, inode, size, modification and change times, from `lstat`), so
-    that variants sharing their includes and meshes hash each once per run, and an editor
-    session hashes only what was saved since."""
-    try:
-        info = os.lstat(path)
-    except OSError:
+    file's identity (`digest.file_stamp`), so that variants sharing their includes and meshes
+    hash each once per run, and an editor session hashes only what was saved since."""
+    stamp = file_stamp(path)
+    if stamp is None:
         return None
-    if not stat.S_ISREG(info.st_mode):
-        return None
-    identity = (path, info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns,
-                info.st_ctime_ns)
+    identity = (path, *stamp)
     if identity not in _DIGESTS:
         if len(_DIGESTS) > 100_000:
             _DIGESTS.clear()
         _DIGESTS[identity] = file_digest(path, follow_symlinks=False)
     return _DIGESTS[identity]
+
+
+def checked_digest(path: str) -> tuple[FileStamp, str] | None:
+    """The identity and digest of `path` as this process last verified them (an entry's
+    input, hashed by `load`), when the file still has that identity; else None."""
+    stamp = file_stamp(path)
+    if stamp is None:
+        return None
+    digest = _DIGESTS.get((path, *stamp))
+    return None if digest is None else (stamp, digest)
 
 
 #: (path, file identity) -> digest (None: unreadable), for this process.
