@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import io
 import re
 
@@ -99,3 +100,21 @@ def test_summary_names_variants_suppressions_and_files_read(tmp_path) -> None:
         "Read 1 file; 264 findings suppressed (260 by inline comments, 1 by config ignores, "
         "3 by baseline).",
     ]
+
+
+def test_a_name_with_a_newline_or_an_escape_stays_on_its_line(tmp_path) -> None:
+    """A link named `base&#10;::error ...` must not put a GitHub workflow command on a line
+    of its own in a CI log, nor send the terminal an escape sequence (a C1 CSI: XML 1.0 has no ESC)."""
+    from robotdesc.cli import main
+
+    robot = tmp_path / "r.urdf"
+    robot.write_text('<robot name="r"><link name="base&#10;::error file=x.py::forged&#155;2J">'
+                     '<inertial><mass value="1"/><inertia ixx="-1" ixy="0" ixz="0" iyy="1" '
+                     'iyz="0" izz="1"/></inertial></link></robot>\n')
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        assert main(["lint", "--no-cache", "-q", str(robot)]) == 1
+    text = out.getvalue()
+    assert "I103" in text and "base\\n::error file=x.py::forged\\x9b2J" in text
+    assert not any(line.startswith("::") for line in text.splitlines())
+    assert "\x9b" not in text

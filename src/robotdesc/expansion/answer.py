@@ -25,6 +25,7 @@ from robotdesc import errors
 from robotdesc.expansion.result import EnvDefault, Expanded, MacroRecursion, ResolvedPackage
 from robotdesc.expansion.roots import Roots
 from robotdesc.expansion.sandbox import is_within
+from robotdesc.printable import printable
 from robotdesc.source import PASSED_SEPARATOR, PROVENANCE_ATTR, Span
 
 #: Longest message, name or path taken from an answer (characters).
@@ -53,16 +54,6 @@ def invalid(path: Path, why: str) -> errors.InvalidAnswer:
     """The error for an answer refused because of `why` (no value from the answer in it)."""
     return errors.InvalidAnswer(f"the xacro worker sent an invalid answer ({why}); the sandbox "
                          "refused the result", Span(str(path)))
-
-
-#: Control characters (C0 but tab, DEL, C1) in a message from the worker, shown as spaces:
-#: no terminal escape and no line of its own (a forged CI workflow command) reaches a log.
-_CONTROLS = {c: " " for c in [*range(0, 9), *range(10, 32), 127, *range(128, 160)]}
-
-
-def printable(text: str) -> str:
-    """`text` with control characters (newlines among them) replaced by spaces."""
-    return text.translate(_CONTROLS)
 
 
 def _text(value: object, what: str, path: Path, limit: int = MAX_TEXT) -> str:

@@ -23,6 +23,7 @@ from robotdesc.cache_dir import read_regular_file
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.errors import InputError
 from robotdesc.linting.merge import LISTED_ELEMENTS, MergedFinding, merge_findings
+from robotdesc.printable import printable
 from robotdesc.source import Span, passed_sites
 
 if TYPE_CHECKING:
@@ -157,9 +158,13 @@ def checked_lines(results: Sequence[LintResult],
 def render_text(results: Sequence[LintResult], failures: Sequence[LintFailure] = (), *,
                 cwd: str | None = None, show_source: bool = True) -> str:
     """The report as plain text (no colour), ending with a newline."""
-    return "".join("".join(text for text, _ in line) + "\n"
-                   for line in render_lines(results, failures, cwd=cwd,
-                                            show_source=show_source))
+    return _joined(render_lines(results, failures, cwd=cwd, show_source=show_source))
+
+
+def _joined(lines: Iterable[Line]) -> str:
+    """Lines as text, each segment `printable`: a name or message holding a newline or an
+    escape (a link named `a&#10;::error ...`) stays on its line (see robotdesc.printable)."""
+    return "".join("".join(printable(text) for text, _ in line) + "\n" for line in lines)
 
 
 def write_text(stream: TextIO, results: Sequence[LintResult],
@@ -168,7 +173,7 @@ def write_text(stream: TextIO, results: Sequence[LintResult],
     """Write the report to `stream`, coloured with rich when `colour` is set."""
     lines = render_lines(results, failures, cwd=cwd)
     if not colour:
-        stream.write("".join("".join(text for text, _ in line) + "\n" for line in lines))
+        stream.write(_joined(lines))
         return
     from rich.console import Console
     from rich.text import Text
@@ -178,7 +183,7 @@ def write_text(stream: TextIO, results: Sequence[LintResult],
     for line in lines:
         rendered = Text()
         for text, style in line:
-            rendered.append(text, style or None)
+            rendered.append(printable(text), style or None)
         console.print(rendered)
 
 
@@ -186,8 +191,8 @@ def render_failure(failure: LintFailure, *, cwd: str | None = None, show_source:
     """A file that could not be checked: `path:line:col: error: message`, the source line
     and the macro call chain (plain text, ending with a newline)."""
     show = lambda path: display_path(path, cwd)
-    lines = _failure_lines(failure.error, failure.target, show, SourceCache(), show_source)
-    return "".join("".join(text for text, _ in line) + "\n" for line in lines)
+    return _joined(_failure_lines(failure.error, failure.target, show, SourceCache(),
+                                  show_source))
 
 
 def merged_lines(finding: MergedFinding, show: Callable[[str], str]) -> list[Line]:
