@@ -30,13 +30,13 @@ import tomllib
 from collections import Counter
 from pathlib import Path
 
+from robotdesc.diagnostics import Diagnostic, Severity
+from robotdesc.linting.merge import message_key
+
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
 import run_corpus  # noqa: E402  (a script beside this one, not a package)
-
-from robotdesc.diagnostics import Diagnostic, Severity  # noqa: E402
-from robotdesc.linting.merge import message_key  # noqa: E402
 
 SPLIT = HERE / "split.toml"
 LINT_TIMEOUT_S = 900.0
