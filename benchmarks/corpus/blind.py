@@ -9,6 +9,7 @@ Usage:
     python benchmarks/corpus/blind.py draw-split
     python benchmarks/corpus/blind.py lint --part blind --label after [--src DIR] [--fresh]
     python benchmarks/corpus/blind.py count --part blind --label after [--label before ...]
+        [--per-location]
     python benchmarks/corpus/blind.py sheet --part blind --label after --seed 2929 --per-rule 5
 
 `--src DIR` runs another robotdesc source tree (PYTHONPATH=DIR), e.g. the code before a change
@@ -28,6 +29,9 @@ import sys
 import tomllib
 from collections import Counter
 from pathlib import Path
+
+from robotdesc.diagnostics import Diagnostic, Severity
+from robotdesc.linting.merge import message_key
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
@@ -163,6 +167,22 @@ def environment_finding(finding: dict, absent: set[str], corpus: Path) -> bool:
     return path in absent or (path.startswith(str(corpus) + "/") and not Path(path).exists())
 
 
+def per_location(every: list[dict]) -> list[dict]:
+    """The findings of each case that agree in code, severity, file, line, column and message
+    (the element's name aside) once, as every report counts them since they merge one problem
+    per source location (robotdesc.linting.merge): for runs cached before that (`before`,
+    `release`), which listed each element's finding."""
+    seen: dict[tuple[object, ...], dict] = {}
+    for finding in every:
+        diagnostic = Diagnostic(finding["code"], finding["name"],
+                                Severity.parse(finding["severity"]), finding["message"], None,
+                                finding["element"])
+        key = (finding["case"], finding["target"], finding["code"], finding["severity"],
+               finding["file"], finding["line"], finding["column"], message_key(diagnostic))
+        seen.setdefault(key, finding)
+    return list(seen.values())
+
+
 def count(options: argparse.Namespace) -> None:
     manifest = run_corpus.load_manifest(run_corpus.DEFAULT_MANIFEST)
     cases = part_cases(manifest, load_split(), options.part)
@@ -175,6 +195,8 @@ def count(options: argparse.Namespace) -> None:
     for label in options.label:
         results = load_results(corpus, label, cases)
         every = findings(results)
+        if options.per_location:
+            every = per_location(every)
         tables[label] = Counter(d["code"] for d in every)
         environment = sum(1 for d in every if environment_finding(d, absent, corpus))
         tables[label]["M101 (not in corpus)"] = environment
@@ -250,6 +272,9 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
     counts = sub.add_parser("count", help="findings per rule of cached runs")
     counts.add_argument("--part", choices=("tuning", "blind"), required=True)
     counts.add_argument("--label", action="append", required=True)
+    counts.add_argument("--per-location", action="store_true",
+                        help="count one finding per problem and source location, as reports "
+                             "do now, in runs cached before reports merged them")
     judge = sub.add_parser("sheet", help="print a seeded judging sheet")
     judge.add_argument("--part", choices=("tuning", "blind"), required=True)
     judge.add_argument("--label", required=True)

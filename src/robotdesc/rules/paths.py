@@ -47,22 +47,136 @@ def made_by_find(filename: str, ctx: RuleContext) -> bool:
                for folder in ctx.expansion.package_folders)
 
 
-def _with_package_fix(finding: Finding, filename: str) -> Finding:
-    """P101/P102's finding with its fix: the absolute path or file:// URI `filename` as
-    package://PACKAGE/PATH of the package that holds the file, or why there is none."""
+#: A ROS install space's copy of a package: `<prefix>/install/<pkg>/share/<pkg>/` (colcon's
+#: isolated layout), `<prefix>/install/share/<pkg>/` (merged, catkin) and
+#: `/opt/ros/<distro>/share/<pkg>/`. ROS resolves `package://<pkg>/` to exactly this folder.
+_INSTALL_SPACE = re.compile(
+    r"^(?:.*/install/(?P<own>[^/]+)/share/(?P=own)"
+    r"|.*/install/share/(?P<merged>[^/]+)"
+    r"|/opt/ros/[^/]+/share/(?P<distro>[^/]+))/(?P<rest>.+)$")
+
+#: Folders that two non-portable paths must share (`/home/ana`, `/opt/arm`, `C:/arm`) to be one
+#: machine's path when no package holds them.
+_SHARED_FOLDERS = 2
+
+#: Grouped references listed by line in the fix text; more are counted.
+_LISTED = 40
+
+
+@dataclasses.dataclass(frozen=True)
+class _Reference:
+    """One non-portable mesh filename and where it points.
+
+    Attributes:
+        mesh, element: the mesh and its element name (`link:base/visual[0]`).
+        folders: the folders of the path it names, from the top (`("home", "ana", "arm",
+            "meshes")`; a Windows drive is the first).
+        package, relative: the package's name and the file's path inside it.
+        unfixable: why there is no package:// form (empty when there is).
+    """
+
+    mesh: MeshRef
+    element: str
+    folders: tuple[str, ...]
+    package: str = ""
+    relative: str = ""
+    unfixable: str = ""
+
+    @property
+    def source(self) -> str:
+        """The file the mesh is written in (a macro's file for a mesh a macro made)."""
+        return self.mesh.where.span.path if self.mesh.where else ""
+
+    @property
+    def package_uri(self) -> str:
+        return f"package://{self.package}/{self.relative}"
+
+
+def _reference(mesh: MeshRef, element: str) -> _Reference:
+    """Where the absolute path or file:// URI of `mesh` points: the package that holds the
+    file on this machine (the nearest package.xml above it), else the ROS install space its
+    path names (`.../install/<pkg>/share/<pkg>/...`: the machine that wrote it had the
+    package there), else no package and why."""
+    filename = mesh.filename
     path = filename
     if filename.lower().startswith("file://"):
         path = urllib.parse.unquote(urllib.parse.urlparse(filename).path)
+    folders = tuple(part for part in re.split(r"[\\/]+", path) if part)[:-1]
     if not os.path.isabs(path):
-        return dataclasses.replace(finding, unfixable=f"'{filename}' is not an absolute path")
+        return _Reference(mesh, element, folders,
+                          unfixable=f"'{filename}' is not an absolute path")
     found = enclosing_package(os.path.normpath(path))
-    if found is None:
-        return dataclasses.replace(
-            finding, unfixable=f"'{path}' is in no ROS package (no package.xml above it)")
-    name, root = found
-    relative = os.path.relpath(os.path.realpath(path), root).replace(os.sep, "/")
-    return dataclasses.replace(finding, changes=(ValueChange(
-        f"{finding.element}/geometry/mesh", "filename", f"package://{name}/{relative}"),))
+    if found is not None:
+        name, root = found
+        relative = os.path.relpath(os.path.realpath(path), root).replace(os.sep, "/")
+        return _Reference(mesh, element, folders, name, relative)
+    installed = _INSTALL_SPACE.match(posixpath.normpath(path))
+    if installed is not None:
+        name = installed.group("own") or installed.group("merged") or installed.group("distro")
+        return _Reference(mesh, element, folders, name, installed.group("rest"))
+    return _Reference(mesh, element, folders,
+                      unfixable=f"'{path}' is in no ROS package (no package.xml above it)")
+
+
+def _shared(first: tuple[str, ...], second: tuple[str, ...]) -> tuple[str, ...]:
+    count = 0
+    for a, b in zip(first, second):
+        if a != b:
+            break
+        count += 1
+    return first[:count]
+
+
+def _folder_text(folders: tuple[str, ...]) -> str:
+    joined = "/".join(folders)
+    return joined if re.match(r"^[A-Za-z]:$", folders[0] if folders else "") else "/" + joined
+
+
+def _groups(references: list[_Reference]) -> list[tuple[str, list[_Reference]]]:
+    """The references as one group per source file and machine path, in order of their first
+    reference, each with its longest common folder: references of one source file whose
+    paths share at least `_SHARED_FOLDERS` folders from the top (`/home/ana`,
+    `/root/c3pzero_ws`), those with a package:// form apart from those without."""
+    groups: list[tuple[str, list[_Reference]]] = []
+    common: list[tuple[str, ...]] = []
+    for reference in references:
+        for index, (_, group) in enumerate(groups):
+            shared = _shared(common[index], reference.folders)
+            if (group[0].source == reference.source and len(shared) >= _SHARED_FOLDERS
+                    and bool(group[0].unfixable) == bool(reference.unfixable)):
+                common[index] = shared
+                group.append(reference)
+                break
+        else:
+            common.append(reference.folders)
+            groups.append(("", [reference]))
+    return [(_folder_text(folders), group) for folders, (_, group) in zip(common, groups)]
+
+
+def _path_findings(references: list[_Reference], problem: str) -> Iterator[Finding]:
+    """One finding per group of `references` (`_groups`), at its first reference: "mesh
+    filename 'F' PROBLEM", and for a group of several "..., and N more mesh references under
+    'ROOT'"; its fix sets every reference of the group to its package:// form (the lines it
+    rewrites are listed as the fix text), or says why there is none."""
+    for root, group in _groups(references):
+        first = group[0]
+        message = f"mesh filename '{first.mesh.filename}' {problem}"
+        if len(group) > 1:
+            more = len(group) - 1
+            message += (f", and {more} more mesh reference{'s' if more > 1 else ''} "
+                        f"under '{root}'")
+        finding = Finding(message, first.mesh.where, first.element)
+        if first.unfixable:
+            yield dataclasses.replace(finding, unfixable=first.unfixable)
+            continue
+        changes = tuple(ValueChange(f"{r.element}/geometry/mesh", "filename", r.package_uri)
+                        for r in group)
+        listed = "\n".join(f"line {r.mesh.where.span.line if r.mesh.where else '?'} "
+                           f"({r.element}): {r.package_uri}" for r in group[:_LISTED])
+        if len(group) > _LISTED:
+            listed += f"\n... and {len(group) - _LISTED} more"
+        yield dataclasses.replace(finding, changes=changes,
+                                  fix=listed if len(group) > 1 else None)
 
 
 @rule("P101", "absolute-mesh-path", family=FAMILY, severity=Severity.WARNING)
@@ -74,6 +188,14 @@ def absolute_mesh_path(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     in a container the mesh is missing. Use `package://<package>/...` (resolved through
     the package, wherever it is installed) or a path relative to the URDF. A path that
     `$(find pkg)` made while expanding the xacro is not reported: the source is portable.
+
+    One machine's path is one problem: the paths of one source file that share at least
+    their first two folders (`/home/ana`, `/opt/arm`, `/root/c3pzero_ws`) are one finding,
+    at the first path, counting the others ("and 36 more mesh references under
+    '/home/ana/ws/src'", their longest common folder); its fix rewrites them all to
+    `package://` (each through the package that holds its file: the nearest `package.xml`
+    above it, or the ROS install space its path names, `.../install/<pkg>/share/<pkg>/...`)
+    and lists their lines. Paths in no package are a finding of their own.
 
     Example
     ```xml
@@ -93,11 +215,10 @@ def absolute_mesh_path(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     </robot>
     ```
     """
-    for mesh, element in _meshes(robot):
-        if _is_absolute(mesh.filename) and not made_by_find(mesh.filename, ctx):
-            yield _with_package_fix(Finding(
-                f"mesh filename '{mesh.filename}' is an absolute path", mesh.where, element),
-                mesh.filename)
+    yield from _path_findings(
+        [_reference(mesh, element) for mesh, element in _meshes(robot)
+         if _is_absolute(mesh.filename) and not made_by_find(mesh.filename, ctx)],
+        "is an absolute path")
 
 
 @rule("P102", "file-uri-mesh", family=FAMILY, severity=Severity.WARNING)
@@ -110,6 +231,12 @@ def file_uri_mesh(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     `file://$(find pkg)/...` made while expanding the xacro is not reported: the source is
     portable, and the expanded URDF is made on the machine that uses it (a common way to let
     Gazebo find meshes without a resource path).
+
+    One machine's path is one problem, grouped as `absolute-mesh-path` groups paths: the
+    URIs of one source file that share their first two folders are one finding at the
+    first, counting the others. Kinova's generated `gen3_2f85.urdf` holds 37 URIs under
+    `file:///root/c3pzero_ws/install/<pkg>/share/<pkg>/` for three packages: one finding,
+    whose fix rewrites all 37 to `package://<pkg>/...`.
 
     Example
     ```xml
@@ -129,11 +256,10 @@ def file_uri_mesh(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     </robot>
     ```
     """
-    for mesh, element in _meshes(robot):
-        if mesh.filename.lower().startswith("file://") and not made_by_find(mesh.filename, ctx):
-            yield _with_package_fix(Finding(
-                f"mesh filename '{mesh.filename}' is a file:// URI", mesh.where, element),
-                mesh.filename)
+    yield from _path_findings(
+        [_reference(mesh, element) for mesh, element in _meshes(robot)
+         if mesh.filename.lower().startswith("file://") and not made_by_find(mesh.filename, ctx)],
+        "is a file:// URI")
 
 
 @rule("P103", "non-portable-mesh-path", family=FAMILY, severity=Severity.WARNING)
