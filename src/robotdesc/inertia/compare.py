@@ -7,6 +7,7 @@ Plain Python (`robotdesc.spatial`): it runs on every lint with mesh rules.
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 from dataclasses import dataclass
@@ -83,8 +84,15 @@ def compare_inertia(inertial: Inertial, geometry: MassProperties,
     """
     if inertial.mass is None:
         raise ValueError("the <inertial> declares no mass")
-    declared = declared_tensor(inertial)
-    derived = geometry.scaled_to_mass(inertial.mass).inertia
+    return _compared(inertial.mass, declared_tensor(inertial), geometry, tolerance)
+
+
+@functools.lru_cache(maxsize=4096)
+def _compared(mass: float, declared: Mat3, geometry: MassProperties,
+              tolerance: float) -> InertiaComparison:
+    """`compare_inertia` on values: links made by one macro (the Engineer's 212 track
+    wheels) compare the same numbers, and are compared once."""
+    derived = geometry.scaled_to_mass(mass).inertia
     dm = principal_moments(declared)
     gm = principal_moments(derived)
     errors = (_relative(dm[0], gm[0]), _relative(dm[1], gm[1]), _relative(dm[2], gm[2]))
