@@ -36,7 +36,14 @@ def main(argv: Sequence[str] | None = None) -> int:
         return _main(words, None)
     from robotdesc.commands import lint_replay  # only for a lint (--version must not pay)
 
-    replayed = lint_replay.replay(words)  # an unchanged lint: what the last identical run said
+    try:
+        replayed = lint_replay.replay(words)  # an unchanged lint: what the last identical run said
+    except KeyboardInterrupt:
+        sys.stderr.write("robotdesc: interrupted\n")
+        return EXIT_INTERRUPTED
+    except BrokenPipeError:  # `robotdesc lint FILE | head`
+        _silence_stdout()
+        return EXIT_OK
     if replayed is not None:
         return replayed
     return _main(words, lint_replay.Recording(words))
