@@ -6,23 +6,24 @@ from __future__ import annotations
 import dataclasses
 import logging
 import os
-from collections.abc import Callable, Iterable
+from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from robotdesc.diagnostics import Diagnostic
 from robotdesc.errors import InputError
-from robotdesc.expansion import Expanded, ExpandOptions
+from robotdesc.expansion import ExpandOptions
 from robotdesc.expansion.packages import enclosing_package
 from robotdesc.linting.driver import lint_expanded
 from robotdesc.linting.fix.engine import FIXED, FixOutcome, plan_fixes
 from robotdesc.linting.matrix import Variant
 from robotdesc.linting.parallel import cached_result, lint_target
-from robotdesc.linting.result import LintResult
 from robotdesc.linting.targets import LintTarget, discover_targets
 from robotdesc.rules.fixes import Applicability
 from robotdesc.server.edits import literal_changes, patch_document
-from robotdesc.server.fanout import run_all
+
+if TYPE_CHECKING:
+    from robotdesc.linting.result import LintResult
 
 log = logging.getLogger(__name__)
 
@@ -37,27 +38,6 @@ TargetKey = tuple[str, Variant]
 def target_key(target: LintTarget) -> TargetKey:
     """The key of a target in the session."""
     return (target.path, tuple(target.args) + tuple(target.variant))
-
-
-@dataclass(frozen=True)
-class _Edit:
-    """A save's change of literal values in one description, and the lint that checks it.
-
-    Attributes:
-        key, target: the description.
-        path: the saved file; data: its bytes now; changes: how many values changed.
-        expanded: the previous expansion with the new values; old: the previous result.
-        job: lints `expanded` (an input error is returned, not raised).
-    """
-
-    key: TargetKey
-    target: LintTarget
-    path: str
-    data: bytes
-    changes: int
-    expanded: Expanded
-    old: LintResult
-    job: Callable[[], LintResult | InputError]
 
 
 @dataclass(frozen=True)
@@ -117,25 +97,16 @@ class Session:
         """Lint the descriptions `path` belongs to; findings per file (every file that had
         or has one in them, and `path` itself, so that the caller can clear stale ones and
         say that a clean file is clean). A description none of whose inputs changed (a
-        variant that does not include the saved file) is read from the result cache; the
-        variants a changed value edits in place are linted at once (`server/fanout.py`)."""
+        variant that does not include the saved file) is read from the result cache."""
         path = os.path.abspath(path)
         touched: set[str] = {path}
-        targets = self.targets_for(path)
-        edits: dict[TargetKey, _Edit] = {}
-        for target in targets:
-            edit = self._edit(target_key(target), target, path)
-            if edit is not None:
-                edits[target_key(target)] = edit
-        linted = dict(zip(edits, run_all([edit.job for edit in edits.values()])))
-        for target in targets:
+        for target in self.targets_for(path):
             key = target_key(target)
             old = self.results.get(key)
             if old is not None:
                 touched.update(_finding_paths(old.diagnostics))
             try:
-                result = self._edited(edits[key], linted[key]) if key in edits else \
-                    self._unchanged(key, target, path) \
+                result = self._edited(key, target, path) \
                     or cached_result(target, {}, self._options(), None, ()) \
                     or self._linted(key, target)
             except InputError as error:
@@ -157,38 +128,22 @@ class Session:
                             (result.inputs.items if result.inputs is not None else ())}
         return result
 
-    def _unchanged(self, key: TargetKey, target: LintTarget, path: str) -> LintResult | None:
-        """The previous result when `path` was saved without a change and nothing else it
-        read changed; else None."""
+    def _edited(self, key: TargetKey, target: LintTarget, path: str) -> LintResult | None:
+        """The lint of a save that changed only literal attribute values of `path`, on the
+        previous expansion edited in place (`robotdesc.server.edits`); None when the save is
+        not such an edit, or another input changed too."""
         old, snapshot = self.results.get(key), self.snapshots.get(key, {})
-        if old is None or path not in snapshot or not self._others_unchanged(key, path):
+        if old is None or old.expanded is None or path not in snapshot:
             return None
         states = self.states.get(key, {})
         real = os.path.realpath(path)
+        if any(_state(file) != state for file, state in states.items() if file != real):
+            return None  # something else changed as well: expand again
         data = _read(path)
         if data is not None and data == snapshot[path] and _state(real) == states.get(real):
-            return old
-        return None
-
-    def _others_unchanged(self, key: TargetKey, path: str) -> bool:
-        """Whether every input of the description but `path` is as its expansion read it."""
-        real = os.path.realpath(path)
-        return all(_state(file) == state for file, state in self.states.get(key, {}).items()
-                   if file != real)
-
-    def _edit(self, key: TargetKey, target: LintTarget, path: str) -> _Edit | None:
-        """The lint of a save that changed only literal attribute values of `path`, on the
-        previous expansion edited in place (`robotdesc.server.edits`), not run yet; None when
-        the save is not such an edit (or changed nothing), or another input changed too."""
-        old, snapshot = self.results.get(key), self.snapshots.get(key, {})
-        if old is None or old.expanded is None or path not in snapshot \
-                or not self._others_unchanged(key, path):
-            return None
-        data = _read(path)
-        if data is None or data == snapshot[path]:
-            return None
-        changes = literal_changes(snapshot[path], data)
-        if changes is None:
+            return old  # saved without a change: nothing to do
+        changes = None if data is None else literal_changes(snapshot[path], data)
+        if data is None or changes is None:
             return None
         xml = patch_document(old.expanded.xml, old.expanded.files, path, changes)
         if xml is None:
@@ -196,27 +151,13 @@ class Session:
         options = self._options()
         options = dataclasses.replace(options, package_map=tuple(options.package_map)
                                       + tuple(target.config.packages))
-        expanded = dataclasses.replace(old.expanded, xml=xml)
-
-        def job() -> LintResult | InputError:
-            try:
-                return lint_expanded(target.path, expanded, target.config, options)
-            except InputError as error:
-                return error
-
-        return _Edit(key, target, path, data, len(changes), expanded, old, job)
-
-    def _edited(self, edit: _Edit, outcome: LintResult | InputError) -> LintResult:
-        """An edit's lint, remembered as the description's state."""
-        if isinstance(outcome, InputError):
-            raise outcome
+        result = lint_expanded(target.path, dataclasses.replace(old.expanded, xml=xml),
+                               target.config, options)
         log.info("%s: %d value(s) changed in %s, linted without expanding again",
-                 edit.target.name(), edit.changes, os.path.basename(edit.path))
-        self.snapshots[edit.key][edit.path] = edit.data
-        real = os.path.realpath(edit.path)
-        self.states.setdefault(edit.key, {})[real] = _state(real)
-        return dataclasses.replace(outcome, variant=edit.target.variant, inputs=edit.old.inputs,
-                                   expanded=edit.expanded)
+                 target.name(), len(changes), os.path.basename(path))
+        snapshot[path] = data
+        states[real] = _state(real)
+        return dataclasses.replace(result, variant=target.variant, inputs=old.inputs)
 
     def findings(self, path: str) -> list[Diagnostic]:
         """The findings of every linted description at `path`, each once (matrix variants
