@@ -1,5 +1,5 @@
-"""The blind protocol of issue 29: lint the tuning or the blind part of the corpus, count the
-default findings per rule, and draw a seeded judging sheet (docs/precision.md).
+"""The blind protocol of issue 29: lint the tuning, the blind or the validation part of the
+corpus, count the default findings per rule, and draw a seeded judging sheet (docs/precision.md).
 
 The split is benchmarks/corpus/split.toml (by repository, with its seed). Lint results are
 cached per case in CORPUS/_precision/LABEL/CASE.json (the `lint --format json` document and the
@@ -11,6 +11,10 @@ Usage:
     python benchmarks/corpus/blind.py count --part blind --label after [--label before ...]
         [--per-location]
     python benchmarks/corpus/blind.py sheet --part blind --label after --seed 2929 --per-rule 5
+    python benchmarks/corpus/blind.py lint --part validation --label validation
+
+The parts: `tuning`, `blind` (drawn with the seed, plus `added`) and `validation` (the
+repositories of issue 29's own held-out corpus; neither drawn nor tuned on).
 
 `--src DIR` runs another robotdesc source tree (PYTHONPATH=DIR), e.g. the code before a change
 extracted with `git archive`, to measure "before" and "after" on the same corpus.
@@ -50,16 +54,31 @@ def blind_repositories(split: dict) -> set[str]:
     return set(split["blind"]) | set(split.get("added", []))
 
 
+def validation_repositories(split: dict) -> set[str]:
+    return set(split.get("validation", []))
+
+
+PARTS = ("tuning", "blind", "validation")
+
+
+def part_of(repository: str, split: dict) -> str:
+    """The part a case's repository belongs to: validation (issue 29's own held-out
+    repositories), blind (drawn or added), else tuning."""
+    if repository in validation_repositories(split):
+        return "validation"
+    return "blind" if repository in blind_repositories(split) else "tuning"
+
+
 def part_cases(manifest: run_corpus.Manifest, split: dict, part: str) -> list[run_corpus.Case]:
-    blind = blind_repositories(split)
-    return [c for c in manifest.cases if (c.repository in blind) == (part == "blind")]
+    return [c for c in manifest.cases if part_of(c.repository, split) == part]
 
 
 def draw_split(manifest: run_corpus.Manifest, split: dict) -> list[str]:
     """The seeded draw of split.toml, again: the repositories of the cases, the ones added for
-    issue 29 left out, sorted, then `random.Random(seed).sample(..., drawn)`."""
-    added = set(split.get("added", []))
-    repositories = sorted({c.repository for c in manifest.cases} - added)
+    issue 29 and the validation part left out, sorted, then
+    `random.Random(seed).sample(..., drawn)`."""
+    outside = set(split.get("added", [])) | validation_repositories(split)
+    repositories = sorted({c.repository for c in manifest.cases} - outside)
     return sorted(random.Random(split["seed"]).sample(repositories, split["drawn"]))
 
 
@@ -134,7 +153,7 @@ def absent_files(corpus: Path, fetch_root: Path, folder: str, commit: str) -> se
     cached = corpus / "_precision" / "absent" / f"{folder}.json"
     if cached.is_file():
         return set(json.loads(cached.read_text()))
-    mirror = fetch_root / folder / "repo"
+    mirror = run_corpus.mirror_dir(fetch_root, folder)
     entries = run_corpus.tree_entries(mirror, commit)
     check = subprocess.run(["git", f"--git-dir={mirror}", "cat-file", "--batch-check"],
                            input="".join(blob + "\n" for _m, blob, _p in entries).encode(),
@@ -264,19 +283,19 @@ def parse_args(argv: list[str] | None = None) -> argparse.Namespace:
     sub = parser.add_subparsers(dest="command", required=True)
     sub.add_parser("draw-split", help="print the seeded draw of split.toml again")
     lint = sub.add_parser("lint", help="lint a part's cases, cached per case")
-    lint.add_argument("--part", choices=("tuning", "blind"), required=True)
+    lint.add_argument("--part", choices=PARTS, required=True)
     lint.add_argument("--label", required=True, help="name of the cached run (e.g. before)")
     lint.add_argument("--src", type=Path, help="robotdesc source tree to run (PYTHONPATH)")
     lint.add_argument("--only", action="append", default=[], help="cases containing this")
     lint.add_argument("--fresh", action="store_true", help="lint again, ignoring the cache")
     counts = sub.add_parser("count", help="findings per rule of cached runs")
-    counts.add_argument("--part", choices=("tuning", "blind"), required=True)
+    counts.add_argument("--part", choices=PARTS, required=True)
     counts.add_argument("--label", action="append", required=True)
     counts.add_argument("--per-location", action="store_true",
                         help="count one finding per problem and source location, as reports "
                              "do now, in runs cached before reports merged them")
     judge = sub.add_parser("sheet", help="print a seeded judging sheet")
-    judge.add_argument("--part", choices=("tuning", "blind"), required=True)
+    judge.add_argument("--part", choices=PARTS, required=True)
     judge.add_argument("--label", required=True)
     judge.add_argument("--seed", type=int, default=2929)
     judge.add_argument("--per-rule", type=int, default=5)

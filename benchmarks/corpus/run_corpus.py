@@ -127,13 +127,22 @@ def check_folders(cases: list[Case], commits: dict[str, str]) -> None:
 # --------------------------------------------------------------------------- extraction
 
 
+def mirror_dir(fetch_root: Path, folder: str) -> Path:
+    """The git directory of a fetch snapshot: FETCH_ROOT/OWNER+NAME/repo, a bare repository,
+    or the `.git` inside it when the snapshot came as a work-tree-less clone (RethinkRobotics'
+    sawyer_robot did)."""
+    repo = fetch_root / folder / "repo"
+    inner = repo / ".git"
+    return inner if inner.is_dir() else repo
+
+
 def extract(folder: str, commit: str, fetch_root: Path, corpus: Path) -> None:
     """Extract one repository at `commit` from its fetch mirror, unless already there."""
     dest = corpus / folder
     stamp = dest / ".corpus-commit"
     if stamp.is_file() and stamp.read_text().strip() == commit:
         return
-    mirror = fetch_root / folder / "repo"
+    mirror = mirror_dir(fetch_root, folder)
     if not mirror.is_dir():
         source = "github:" + folder.replace("+", "/")
         raise SystemExit(f"no mirror {mirror}: bring it with the fetch tool ({source})")
