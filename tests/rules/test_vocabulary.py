@@ -48,7 +48,7 @@ def run(code: str, xml: str, path: str = "r.urdf", from_xacro: bool = False):
 
 
 CASES = [FIXTURES / "typos.urdf", FIXTURES / "extensions.urdf", FIXTURES / "xacro_snippet.urdf",
-         FIXTURES / "xacro_in_text.urdf",
+         FIXTURES / "xacro_in_text.urdf", FIXTURES / "legacy.urdf",
          FIXTURES / "xacro_pkg" / "urdf" / "arm.urdf.xacro"]
 
 
@@ -72,6 +72,12 @@ def test_messages_say_what_was_meant() -> None:
     assert "did you mean 'iyz'?" in messages[("S202", 19)]  # the missing entry, not ixy
     assert "did you mean 'upper'?" in messages[("S202", 30)]
     assert "did you mean <color>?" in messages[("S201", 34)]
+
+
+def test_legacy_joint_properties_name_dynamics() -> None:
+    (finding,) = [d for d in lint(FIXTURES / "legacy.urdf") if d.code == "S201"]
+    assert "early URDF's name for <dynamics>" in finding.message
+    assert 'write <dynamics damping="..." friction="..."/>' in finding.message
 
 
 def test_a_typo_in_a_macro_body_is_one_finding_with_the_expansion_count() -> None:

@@ -128,6 +128,14 @@ GAZEBO_TAGS = frozenset({
 })
 
 
+#: Elements of early URDF that today's parsers ignore, by (parent, tag): the element that
+#: replaced each, and that element's defaults (a legacy element that only restates them
+#: loses nothing: S201 leaves it alone).
+LEGACY_ELEMENTS: dict[tuple[str, str], tuple[str, dict[str, float]]] = {
+    ("joint", "joint_properties"): ("dynamics", {"damping": 0.0, "friction": 0.0}),
+}
+
+
 def spec_of(tag: str) -> ElementSpec | None:
     """The spec of an element URDF defines, or None."""
     return URDF_ELEMENTS.get(tag)

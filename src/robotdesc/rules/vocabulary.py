@@ -21,6 +21,7 @@ from robotdesc.model.elements import Robot
 from robotdesc.rules.registry import RuleContext, SourceDocument, rule
 from robotdesc.rules.urdf_vocabulary import (
     GAZEBO_TAGS,
+    LEGACY_ELEMENTS,
     URDF_ELEMENTS,
     ElementSpec,
     parents_of,
@@ -382,7 +383,8 @@ class _Walker:
                 child_spec = spec_of(child_tag)
                 if child_spec is not None:
                     self.visit(child, child_spec, where, child_owner)
-            elif not spec.known_child(child_tag) and spec.judge_children:
+            elif not spec.known_child(child_tag) and spec.judge_children \
+                    and not _restates_defaults(child, tag):
                 self.found.append(UnknownName(
                     "element", child_tag, tag, _element_hint(child_tag, tag, spec),
                     _Where(self, child, where).get(), child_owner))
@@ -436,8 +438,28 @@ _XACRO_DIRECTIVES = frozenset({"include", "macro", "property", "arg", "if", "unl
                                "insert_block", "element", "attribute"})
 
 
+def _restates_defaults(element: etree._Element, parent: str) -> bool:
+    """Whether `element` is a legacy element (`LEGACY_ELEMENTS`: `<joint_properties
+    damping="0.0" friction="0.0"/>`) whose every value is the default of the element that
+    replaced it: ignored, and nothing meant is lost."""
+    legacy = LEGACY_ELEMENTS.get((parent, str(element.tag)))
+    if legacy is None or len(element):
+        return False
+    defaults = legacy[1]
+    try:
+        return all(name in defaults and float(value) == defaults[name]
+                   for name, value in element.attrib.items() if name != PROVENANCE_ATTR)
+    except ValueError:  # "${damping}" left unexpanded, a word: not a default
+        return False
+
+
 def _element_hint(tag: str, parent: str, spec: ElementSpec) -> str:
     """Did-you-mean, else where the element belongs."""
+    legacy = LEGACY_ELEMENTS.get((parent, tag))
+    if legacy is not None:
+        return (f"<{tag}> is early URDF's name for <{legacy[0]}>, which today's parsers read "
+                f"instead: write <{legacy[0]} " + " ".join(f'{n}="..."' for n in legacy[1])
+                + "/>")
     if tag in _XACRO_DIRECTIVES:
         return (f"<{tag}> is a xacro directive written without its prefix, which xacro 2 "
                 f"leaves in the URDF as is: write <xacro:{tag}> (with "
