@@ -136,7 +136,7 @@ def run_lint(ns: argparse.Namespace) -> int:
     for result in results:
         if result.inputs is not None:  # always, for a result read from the cache
             inputs += result.inputs
-    if not (failures or searched or ns.output_file):
+    if not (failures or searched or ns.output_file or ns.verbose):  # -v: this run's own log
         ns.replay = _replay_record(paths, inputs)
     return finish(ns, targets, results, failures, inputs)
 
