@@ -66,14 +66,15 @@ def lint_file(path: str, config: Config | None = None, *,
     merged_args = {**dict(config.args), **dict(args or {})}
     options = dataclasses.replace(options, unchecked_args=tuple(
         name for name, _ in config.args if name not in (args or {})))
-    # while the worker expands, the parent waits: import what the lint needs meanwhile
+    # while the worker expands, this process only waits: import what the lint needs meanwhile
     ahead = ImportsAhead(lambda: lint_imports(
         tuple(select) if select is not None else config.select,
         tuple(config.ignore) + tuple(ignore),
         analyze_meshes=cache_folder(config.meshes.cache and options.use_cache,
-                                    options.cache_dir) is None)).start()
+                                    options.cache_dir) is None))
     try:
-        expanded = expand_file(target, merged_args, options=options)
+        expanded = expand_file(target, merged_args, options=options,
+                               on_worker_start=ahead.start)
     finally:
         ahead.stop()
     return lint_expanded(target, expanded, config, options, select=select, ignore=ignore,

@@ -1,6 +1,8 @@
 """The imports a lint needs after its expansion, done ahead in a background thread while the
-xacro worker expands (the parent only waits for the worker's answer then; on a 2-core machine
-the imports and the expansion overlap).
+xacro worker expands (the parent only waits for the worker's answer then; with a core free
+the imports and the expansion overlap). The thread starts once the worker runs
+(`expand_file(on_worker_start=)`), so that it never delays the worker's start, and not at all
+when the expansion comes from its cache or the file is a plain URDF.
 
 `ImportsAhead` imports module after module until the caller stops it; `stop()` waits for the
 module being imported to finish, so that after it no import runs in two threads. An import
@@ -40,13 +42,19 @@ class ImportsAhead:
     def __init__(self, plan: Callable[[], Iterable[str]]) -> None:
         self._plan = plan
         self._stopped = threading.Event()
+        self._started = False
         self._thread = threading.Thread(target=self._run, name="robotdesc-imports-ahead",
                                         daemon=True)
 
-    def start(self) -> ImportsAhead:
-        """Start importing; returns self."""
-        self._thread.start()
-        return self
+    def start(self) -> None:
+        """Start importing (once; nothing happens when no thread can be started)."""
+        if self._started:
+            return
+        self._started = True
+        try:
+            self._thread.start()
+        except RuntimeError as error:  # no thread to be had: the lint imports as it goes
+            log.debug("not importing ahead: %s", error)
 
     def stop(self) -> None:
         """Import nothing more, and wait for the module being imported."""
