@@ -27,8 +27,9 @@ log = logging.getLogger(__name__)
 _ALWAYS = ("robotdesc.model.parse", "robotdesc.rules.catalog")
 #: What reading meshes imports: numpy and the readers, the summary (numpy.ma: np.unique).
 _MESHES = ("robotdesc.mesh.summary", "numpy.ma")
-#: What summarizing meshes without a cache may import: pycollada for .dae files, qhull for
-#: the hull of an open surface; the last ones, since they may not be needed at all.
+#: What summarizing meshes may import when the summaries are computed (no mesh cache, or an
+#: empty one): pycollada for .dae files, qhull for the hull of an open surface; the last
+#: ones, since they may not be needed at all.
 _MESH_ANALYSIS = ("collada", "scipy.spatial")
 
 
@@ -90,8 +91,8 @@ def lint_imports(select: Sequence[str] | None, ignore: Sequence[str],
 
     Args:
         select, ignore: the selection that applies (as `select_rules` takes it).
-        analyze_meshes: mesh files will be summarized (no mesh cache): their readers and
-            qhull may be needed.
+        analyze_meshes: mesh files will be summarized, not read from a cache (none, or an
+            empty one): pycollada and qhull may be needed.
     """
     yield from _ALWAYS
     from robotdesc.rules.catalog import all_rules
