@@ -94,3 +94,10 @@ def test_unwritable_cache_is_not_an_error(tmp_path, mesh_file):
     blocker.write_text("a file where the cache directory should be")
     summary = analyze_mesh_file(mesh_file, cache=MeshCache(blocker))
     assert summary.properties.volume == pytest.approx(6.0)
+
+
+def test_a_cache_is_empty_until_a_summary_is_stored(tmp_path, mesh_file):
+    cache = MeshCache(tmp_path / "cache")
+    assert cache.is_empty()  # not even created
+    analyze_mesh_file(mesh_file, cache=cache)
+    assert not cache.is_empty()

@@ -88,3 +88,36 @@ def test_merge_tolerance_is_relative_to_the_mesh_size():
     small, large = box_triangles((0.01, 0.01, 0.01)), box_triangles((10.0, 10.0, 10.0))
     assert merge_tolerance(small.reshape(-1, 3)) < merge_tolerance(large.reshape(-1, 3))
     assert merge_tolerance(large.reshape(-1, 3)) < 1e-4
+
+
+def _pair_set(pairs: np.ndarray) -> set[tuple[int, int]]:
+    assert all(i < j for i, j in pairs.tolist())
+    return {(int(i), int(j)) for i, j in pairs}
+
+
+def test_close_pairs_by_cells_are_the_pairs_of_the_pairwise_comparison():
+    """The grid finds exactly the pairs every-pair comparison finds: random clouds with
+    clusters, points on a lattice exactly one tolerance apart (the boundary case), repeated
+    coordinates on a plane, and a tolerance wider than the cloud."""
+    from robotdesc.mesh.health import _close_pairs_in_cells, _close_pairs_pairwise
+
+    rng = np.random.default_rng(31)
+    tolerance = 2.0 ** -10  # the lattice's neighbours are exactly this far apart
+    clouds = []
+    for n in (2, 3, 50, 700, 2048):
+        base = rng.uniform(-0.2, 0.2, (n, 3))
+        jitter = base[rng.integers(0, n, n // 2)] + rng.normal(0, tolerance, (n // 2, 3))
+        clouds.append(np.concatenate([base, jitter]))
+    lattice = np.stack(np.meshgrid(*[np.arange(6) * tolerance] * 3), axis=-1).reshape(-1, 3)
+    clouds.append(lattice + 0.375)
+    flat = rng.uniform(0, 0.01, (400, 3))
+    flat[:, 2] = 0.25
+    flat[::3, 0] = 0.005
+    clouds.append(flat)
+    for points in clouds:
+        points = np.asarray(points, dtype=np.float64)
+        for tol in (tolerance, 0.01) if len(points) > 300 else (tolerance, 0.05, 10.0):
+            expected = _pair_set(_close_pairs_pairwise(points, tol * tol))
+            found = _close_pairs_in_cells(points, tol, tol * tol)
+            assert found is not None
+            assert _pair_set(found) == expected

@@ -25,6 +25,7 @@ import time
 from collections.abc import Iterator
 from dataclasses import dataclass
 from types import FrameType
+from typing import IO
 
 from robotdesc.atomic import deliver_signal
 
@@ -33,6 +34,11 @@ log = logging.getLogger(__name__)
 #: Bytes of the worker's messages (stderr) kept; the rest is counted and dropped.
 MAX_MESSAGE_BYTES = 256 * 1024
 _CHUNK = 1 << 16
+#: What the worker's answer pipe holds (Linux, `F_SETPIPE_SZ`), and the most read at once:
+#: with the default 64 KiB the worker waits for this process to read every 64 KiB of a
+#: larger answer, each time this process's other thread (imports ahead, `robotdesc.linting`)
+#: holds the interpreter lock.
+_ANSWER_PIPE_BYTES = 1 << 20
 #: Signals that end the parent and must take the worker with them.
 _ENDING_SIGNALS = (signal.SIGTERM, signal.SIGHUP)
 
@@ -82,6 +88,7 @@ def exchange(proc: subprocess.Popen[bytes], job: bytes, timeout_s: float,
     err: list[bytes] = []
     out_size = err_size = dropped = 0
     pending = memoryview(job)
+    _widen(proc.stdout)
     selector = selectors.DefaultSelector()
     os.set_blocking(proc.stdin.fileno(), False)
     selector.register(proc.stdin, selectors.EVENT_WRITE)
@@ -105,7 +112,7 @@ def exchange(proc: subprocess.Popen[bytes], job: bytes, timeout_s: float,
                         proc.stdin.close()
                     continue
                 fd = key.fileobj.fileno()  # type: ignore[union-attr]
-                chunk = os.read(fd, _CHUNK)
+                chunk = os.read(fd, _ANSWER_PIPE_BYTES if key.fileobj is proc.stdout else _CHUNK)
                 if not chunk:
                     selector.unregister(key.fileobj)
                     continue
@@ -131,6 +138,20 @@ def exchange(proc: subprocess.Popen[bytes], job: bytes, timeout_s: float,
         kill_group(proc)
         return Exchanged(b"".join(out), b"".join(err), dropped, timed_out=True)
     return Exchanged(b"".join(out), b"".join(err), dropped)
+
+
+def _widen(stream: IO[bytes]) -> None:
+    """Let the pipe hold `_ANSWER_PIPE_BYTES` where the system allows (else it keeps its
+    size: above /proc/sys/fs/pipe-max-size or a user's pipe quota, not Linux)."""
+    import fcntl  # POSIX only
+
+    setting = getattr(fcntl, "F_SETPIPE_SZ", None)
+    if setting is None:
+        return
+    try:
+        fcntl.fcntl(stream.fileno(), setting, _ANSWER_PIPE_BYTES)
+    except OSError as error:
+        log.debug("the worker's answer pipe keeps its size: %s", error)
 
 
 class _Ended(BaseException):

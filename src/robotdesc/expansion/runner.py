@@ -9,6 +9,7 @@ import os
 import signal
 import subprocess
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 from robotdesc import errors
@@ -86,12 +87,14 @@ def require_confinement(path: Path) -> None:
 
 def run_worker(path: Path, args: dict[str, str], resolver: PackageResolverConfig, *,
                trusted: bool, env: dict[str, str], limits: WorkerLimits,
-               env_names: tuple[str, ...] = ()) -> Expanded:
+               env_names: tuple[str, ...] = (),
+               on_start: Callable[[], object] | None = None) -> Expanded:
     """Expand `path` in a worker process (confined by the OS unless `trusted`).
 
     Args:
         env_names: names (never values) of variables set in the caller's environment,
             so that the worker can say which one was not passed.
+        on_start: called once the worker process runs (this process then only waits).
 
     Raises:
         InputError subclasses: the file could not be expanded (with file:line when known).
@@ -123,6 +126,8 @@ def run_worker(path: Path, args: dict[str, str], resolver: PackageResolverConfig
     except OSError as exc:
         raise errors.RobotdescError(f"cannot start the xacro worker: {exc}") from exc
     with worker_group(proc):
+        if on_start is not None:
+            on_start()
         exchanged = exchange(proc, json.dumps(job).encode(), limits.timeout_s,
                              answer_cap(limits.max_output_bytes))
     if exchanged.timed_out:

@@ -20,6 +20,8 @@ from robotdesc.linting import rule_cache
 from robotdesc.linting.package_reader import named_controller_files, read_package_files
 from robotdesc.linting.result import LintResult
 from robotdesc.linting.suppress import Suppression, apply_suppressions, scan_files, unused_codes
+from robotdesc.linting.warmup import ImportsAhead, lint_imports
+from robotdesc.mesh.cache import MeshCache
 from robotdesc.mesh.context import MeshContext
 from robotdesc.mesh.resolve import PackageLookup
 from robotdesc.model.elements import Robot
@@ -65,9 +67,25 @@ def lint_file(path: str, config: Config | None = None, *,
     merged_args = {**dict(config.args), **dict(args or {})}
     options = dataclasses.replace(options, unchecked_args=tuple(
         name for name, _ in config.args if name not in (args or {})))
-    expanded = expand_file(target, merged_args, options=options)
+    # while the worker expands, this process only waits: import what the lint needs meanwhile
+    ahead = ImportsAhead(lambda: lint_imports(
+        tuple(select) if select is not None else config.select,
+        tuple(config.ignore) + tuple(ignore),
+        analyze_meshes=_meshes_analyzed(config, options)))
+    try:
+        expanded = expand_file(target, merged_args, options=options,
+                               on_worker_start=ahead.start)
+    finally:
+        ahead.stop()
     return lint_expanded(target, expanded, config, options, select=select, ignore=ignore,
                          find_package=find_package)
+
+
+def _meshes_analyzed(config: Config, options: ExpandOptions) -> bool:
+    """Whether this lint's mesh summaries will be computed rather than read: no mesh cache,
+    or one that holds nothing yet (a first run, a fresh CI machine)."""
+    folder = cache_folder(config.meshes.cache and options.use_cache, options.cache_dir)
+    return folder is None or MeshCache(folder).is_empty()
 
 
 def lint_expanded(target: str, expanded: Expanded, config: Config, options: ExpandOptions, *,

@@ -61,6 +61,15 @@ class MeshCache:
         self._stats = os.path.join(self.directory, f"stat-v{CACHE_VERSION}")
         self._write_failed = False
 
+    def is_empty(self) -> bool:
+        """No summary was ever stored here (every mesh is a miss: a first run, a fresh CI
+        machine)."""
+        try:
+            with os.scandir(self._entries) as entries:
+                return next(entries, None) is None
+        except OSError:
+            return True
+
     def key_for(self, path: str, scale: Sequence[float]) -> str | None:
         """The cache key of a file's content at a scale; None if the file cannot be read."""
         digest = self.content_digest(path)

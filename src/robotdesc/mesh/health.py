@@ -212,8 +212,9 @@ def _repeated(faces: np.ndarray) -> np.ndarray:
     return repeated
 
 
-#: Up to this many points, `_close_pairs` compares every pair with numpy (a few ms) rather
-#: than importing scipy's k-d tree (about 0.2 s of imports in a fresh process).
+#: Up to this many points, `_close_pairs` looks in a grid of cells with numpy (about a
+#: millisecond; every pair compared where the grid cannot be numbered) rather than importing
+#: scipy's k-d tree (about 0.2 s of imports in a fresh process).
 _BRUTE_FORCE_POINTS = 2048
 
 
@@ -227,6 +228,12 @@ def _close_pairs(points: np.ndarray, tolerance: float) -> np.ndarray:
         return found
     points = np.asarray(points, dtype=np.float64)
     limit = tolerance * tolerance
+    near = _close_pairs_in_cells(points, tolerance, limit)
+    return near if near is not None else _close_pairs_pairwise(points, limit)
+
+
+def _close_pairs_pairwise(points: np.ndarray, limit: float) -> np.ndarray:
+    """`_close_pairs` by comparing every pair (`limit`: the squared tolerance)."""
     chunks = []
     for start in range(0, len(points) - 1, 256):
         block = points[start:start + 256]
@@ -235,6 +242,50 @@ def _close_pairs(points: np.ndarray, tolerance: float) -> np.ndarray:
         rows += start
         keep = cols > rows
         chunks.append(np.stack((rows[keep], cols[keep]), axis=1))
+    return np.concatenate(chunks) if chunks else np.zeros((0, 2), dtype=np.int64)
+
+
+#: The cells `_close_pairs_in_cells` looks into from a point's own cell: itself and the 13
+#: neighbours that come after it (the other 13 find the same pairs from the other side).
+_LATER_CELLS = tuple((dx, dy, dz) for dx in (-1, 0, 1) for dy in (-1, 0, 1) for dz in (-1, 0, 1)
+                     if (dx, dy, dz) >= (0, 0, 0))
+
+
+def _close_pairs_in_cells(points: np.ndarray, tolerance: float, limit: float
+                          ) -> np.ndarray | None:
+    """`_close_pairs` by a grid of cells twice `tolerance` wide: only points in the same or
+    adjacent cells can be that close, and each candidate pair is tested with the same
+    squared distance as the pairwise comparison (so the same pairs are found, as (i, j) with
+    i < j, in another order). None when the grid's cell numbers would not fit in 64 bits."""
+    if not tolerance > 0 or len(points) < 2 or not np.isfinite(points).all():
+        return None
+    low = points.min(axis=0)
+    cells = np.floor((points - low) / (2.0 * tolerance))
+    span = cells.max(axis=0) + 3.0  # one empty cell on each side for the neighbours
+    if not np.isfinite(span).all() or float(np.prod(span)) >= 2.0 ** 62:
+        return None
+    cell = cells.astype(np.int64) + 1
+    wide = span.astype(np.int64)
+    key = (cell[:, 0] * wide[1] + cell[:, 1]) * wide[2] + cell[:, 2]
+    order = np.argsort(key, kind="stable")
+    ordered = key[order]
+    chunks = []
+    for dx, dy, dz in _LATER_CELLS:
+        wanted = key + (dx * wide[1] + dy) * wide[2] + dz
+        first = np.searchsorted(ordered, wanted, side="left")
+        counts = np.searchsorted(ordered, wanted, side="right") - first
+        total = int(counts.sum())
+        if total == 0:
+            continue
+        rows = np.repeat(np.arange(len(points)), counts)
+        offsets = np.arange(total) - np.repeat(np.cumsum(counts) - counts, counts)
+        cols = order[np.repeat(first, counts) + offsets]
+        if (dx, dy, dz) == (0, 0, 0):
+            keep = cols > rows
+            rows, cols = rows[keep], cols[keep]
+        close = ((points[rows] - points[cols]) ** 2).sum(axis=1) <= limit
+        rows, cols = rows[close], cols[close]
+        chunks.append(np.stack((np.minimum(rows, cols), np.maximum(rows, cols)), axis=1))
     return np.concatenate(chunks) if chunks else np.zeros((0, 2), dtype=np.int64)
 
 

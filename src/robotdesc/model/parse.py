@@ -620,8 +620,19 @@ class _ColumnFinder:
         lines = known[1]
         if span.line > len(lines):
             return 0
-        match = re.search(rf"<(?:[\w.-]+:)?{re.escape(tag)}(?=[\s/>]|$)", lines[span.line - 1])
+        pattern = _START_TAGS.get(tag)
+        if pattern is None:
+            if len(_START_TAGS) >= _START_TAG_PATTERNS:
+                _START_TAGS.clear()
+            pattern = _START_TAGS[tag] = re.compile(
+                rf"<(?:[\w.-]+:)?{re.escape(tag)}(?=[\s/>]|$)")
+        match = pattern.search(lines[span.line - 1])
         return match.start() + 1 if match else 0
+
+
+#: Tag -> the pattern of its start tag in a source line (a few dozen tags in a description).
+_START_TAGS: dict[str, re.Pattern[str]] = {}
+_START_TAG_PATTERNS = 1024
 
 
 class _Decodings:

@@ -1,0 +1,41 @@
+"""The parent's side of the worker's pipes (robotdesc/expansion/exchange.py): the answer
+arrives whole whatever its size, through a pipe widened where the system allows."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+from robotdesc.expansion.exchange import _ANSWER_PIPE_BYTES, exchange
+
+WRITER = ("import sys; data = sys.stdin.buffer.read(); "
+          "sys.stdout.buffer.write(data * {times}); sys.stderr.write('note')")
+
+
+@pytest.mark.parametrize("times", [1, 5_000, 40_000])
+def test_the_answer_arrives_whole(times: int) -> None:
+    proc = subprocess.Popen([sys.executable, "-c", WRITER.format(times=times)],
+                            stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE)
+    done = exchange(proc, b"0123456789" * 10, timeout_s=30, answer_cap=1 << 26)
+    assert done.out == b"0123456789" * 10 * times
+    assert done.err == b"note" and not done.overflow and not done.timed_out
+
+
+def test_the_answer_pipe_is_widened_where_linux_allows() -> None:
+    fcntl = pytest.importorskip("fcntl")
+    if not hasattr(fcntl, "F_GETPIPE_SZ"):
+        pytest.skip("no F_GETPIPE_SZ here")
+    with open("/proc/sys/fs/pipe-max-size") as handle:
+        if int(handle.read()) < _ANSWER_PIPE_BYTES:
+            pytest.skip("pipes may not be that large here")
+    from robotdesc.expansion.exchange import _widen
+
+    proc = subprocess.Popen([sys.executable, "-c", "pass"], stdout=subprocess.PIPE)
+    try:
+        _widen(proc.stdout)
+        assert fcntl.fcntl(proc.stdout.fileno(), fcntl.F_GETPIPE_SZ) >= _ANSWER_PIPE_BYTES
+    finally:
+        proc.communicate()
