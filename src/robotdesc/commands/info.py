@@ -17,6 +17,7 @@ from robotdesc.expansion import expand_file
 from robotdesc.kinematics.optional import import_pinocchio
 from robotdesc.linting.inputs import run_inputs
 from robotdesc.mesh.locate import MeshLocator
+from robotdesc.printable import printable
 from robotdesc.progress import progress_for
 from robotdesc.view.forward import parse_assignments
 
@@ -101,4 +102,4 @@ def render_info(info: RobotInfo) -> str:
         box += (f" ({len(info.left_out)} <collision> left out; first: {info.left_out[0]})")
     rows.append(("bounding box (collision)", box))
     width = max(len(label) for label, _ in rows)
-    return "".join(f"{label.ljust(width)}  {value}\n" for label, value in rows)
+    return "".join(f"{label.ljust(width)}  {printable(value)}\n" for label, value in rows)
