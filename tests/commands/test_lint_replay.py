@@ -179,3 +179,26 @@ def test_inputs_changed_just_before_the_run_are_not_recorded(
     _lint(capsys, str(top))
     _lint(capsys, str(top))
     assert _replays(cache) == []
+
+
+def test_a_verbose_run_is_not_recorded(tmp_path: Path, cache: Path,
+                                       capsys: pytest.CaptureFixture[str]) -> None:
+    top = _robot(tmp_path / "pkg")
+    for _ in range(2):
+        _lint(capsys, "-v", str(top))
+    assert _replays(cache) == []
+
+
+def test_a_closed_pipe_during_a_replay_ends_quietly(
+        tmp_path: Path, cache: Path, capsys: pytest.CaptureFixture[str],
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    top, _ = _stored(tmp_path, capsys, cache)
+
+    def closed(*args: object) -> int:
+        raise BrokenPipeError
+
+    silenced: list[bool] = []
+    monkeypatch.setattr("robotdesc.cli._silence_stdout", lambda: silenced.append(True))
+    monkeypatch.setattr(lint_replay.sys.stdout, "write", closed)
+    assert main(["lint", str(top)]) == 0
+    assert silenced == [True]
