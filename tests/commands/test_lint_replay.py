@@ -10,46 +10,16 @@ import os
 from pathlib import Path
 
 import pytest
+from support import write_limit_robot
 
 from robotdesc.cache_dir import read_entry, write_entry
 from robotdesc.cli import main
 from robotdesc.commands import lint_replay
 from robotdesc.linting import parallel, result_cache
 
-TOP = """<?xml version="1.0"?>
-<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:include filename="part.xacro"/>
-  <link name="base">
-    <inertial><mass value="1"/>
-      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
-  </link>
-  <xacro:arm parent="base"/>
-</robot>
-"""
-PART = """<?xml version="1.0"?>
-<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:macro name="arm" params="parent">
-    <link name="arm">
-      <inertial><mass value="1"/>
-        <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
-    </link>
-    <joint name="shoulder" type="revolute">
-      <parent link="${parent}"/><child link="arm"/><axis xyz="0 0 1"/>
-      <limit lower="LOWER" upper="UPPER" effort="10" velocity="1"/>
-    </joint>
-  </xacro:macro>
-</robot>
-"""
-
 
 def _robot(folder: Path, lower: str = "1") -> Path:
-    """A xacro robot whose included macro has a reversed limit (J103) when lower > -1."""
-    folder.mkdir(exist_ok=True)
-    (folder / "part.xacro").write_text(PART.replace("LOWER", lower).replace(
-        "UPPER", "1" if lower == "-1" else "-1"))
-    top = folder / "robot.urdf.xacro"
-    top.write_text(TOP)
-    return top
+    return write_limit_robot(folder, lower)
 
 
 @pytest.fixture()
@@ -122,7 +92,7 @@ def test_a_config_put_above_is_noticed(tmp_path: Path, cache: Path,
 def test_another_command_line_or_environment_is_another_run(
         tmp_path: Path, cache: Path, capsys: pytest.CaptureFixture[str],
         monkeypatch: pytest.MonkeyPatch) -> None:
-    top, warm = _stored(tmp_path, capsys, cache)
+    top, _ = _stored(tmp_path, capsys, cache)
     key = lint_replay.replay_key(["lint", str(top)])
     assert lint_replay.replay_key(["lint", str(top), "--format", "json"]) != key
     monkeypatch.setenv("NO_COLOR", "1")
@@ -134,7 +104,7 @@ def test_another_command_line_or_environment_is_another_run(
 def test_a_symlinked_folder_put_on_the_way_is_not_replayed(
         tmp_path: Path, cache: Path, capsys: pytest.CaptureFixture[str],
         monkeypatch: pytest.MonkeyPatch) -> None:
-    top, warm = _stored(tmp_path, capsys, cache)
+    top, _ = _stored(tmp_path, capsys, cache)
     moved = tmp_path / "elsewhere"
     top.parent.rename(moved)
     (tmp_path / "pkg").symlink_to(moved, target_is_directory=True)

@@ -9,6 +9,7 @@ import os
 from pathlib import Path
 
 import pytest
+from support import write_limit_robot
 
 from robotdesc.cache_dir import read_entry, write_entry
 from robotdesc.cli import main
@@ -17,39 +18,12 @@ from robotdesc.linting import parallel, result_cache
 from robotdesc.linting.result import LintResult
 from robotdesc.linting.targets import LintTarget
 
-TOP = """<?xml version="1.0"?>
-<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:include filename="part.xacro"/>
-  <link name="base">
-    <inertial><mass value="1"/>
-      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
-  </link>
-  <xacro:arm parent="base"/>
-</robot>
-"""
-PART = """<?xml version="1.0"?>
-<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:macro name="arm" params="parent">
-    <link name="arm">
-      <inertial><mass value="1"/>
-        <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
-    </link>
-    <joint name="shoulder" type="revolute">
-      <parent link="${parent}"/><child link="arm"/><axis xyz="0 0 1"/>
-      <limit lower="LOWER" upper="UPPER" effort="10" velocity="1"/>
-    </joint>
-  </xacro:macro>
-</robot>
-"""
 PAST_NS = 1_600_000_000 * 10**9  # 2020: files written "long before" the lint
 
 
 def _robot(folder: Path, lower: str = "1") -> Path:
-    """A xacro robot whose included macro has a reversed limit (J103) when lower > -1."""
-    (folder / "part.xacro").write_text(PART.replace("LOWER", lower).replace(
-        "UPPER", "1" if lower == "-1" else "-1"))
-    top = folder / "robot.urdf.xacro"
-    top.write_text(TOP)
+    """`support.write_limit_robot`, its files dated long before the lint."""
+    top = write_limit_robot(folder, lower)
     for path in folder.iterdir():
         os.utime(path, ns=(PAST_NS, PAST_NS))
     return top
