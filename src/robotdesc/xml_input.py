@@ -18,6 +18,7 @@ raise a `RecursionError`.
 
 from __future__ import annotations
 
+import functools
 import logging
 import os
 import re
@@ -105,6 +106,23 @@ def parse_xml(data: bytes, path: str, options: XmlOptions = DEFAULT_OPTIONS) -> 
 
 #: libxml2's "Namespace prefix a on b is not defined" (domain NAMESPACE).
 _UNDEFINED_PREFIX = 201
+
+
+@functools.lru_cache(maxsize=8)
+def shared_root(data: bytes) -> etree._Element | None:
+    """A document the model's parse accepted, parsed once more and shared (comments and
+    processing instructions removed; no entities, DTD or network) by the rules and readers
+    that judge its raw elements (S201/S202, the R1xx wiring rules, the controllers file a
+    description names): one parse per document instead of one per reader. Read-only: no
+    caller may change the tree. None when it cannot be parsed (reported by the model's
+    parse).
+    """
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
+                             huge_tree=False, remove_comments=True, remove_pis=True)
+    try:
+        return etree.fromstring(data, parser)
+    except (etree.XMLSyntaxError, ValueError):
+        return None
 
 
 def _only_undeclared_prefixes(errors: etree._ListErrorLog) -> bool:

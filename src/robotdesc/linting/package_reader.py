@@ -72,13 +72,12 @@ def read_package_files(source: str, package_dirs: Sequence[tuple[str, str]] = ()
 
 def named_controller_files(xml: bytes) -> tuple[str, ...]:
     """The `<parameters>` paths of the ros2_control simulator plugins in a description."""
-    from lxml import etree  # not on the path of a lint answered from the result cache
+    if b"parameters" not in xml:
+        return ()
+    from robotdesc.xml_input import shared_root  # lxml: not on the path of a warm lint
 
-    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
-                             remove_comments=True, remove_pis=True)
-    try:
-        root = etree.fromstring(xml, parser)
-    except (etree.XMLSyntaxError, ValueError):
+    root = shared_root(xml)
+    if root is None:
         return ()
     paths = []
     for plugin in root.iter("plugin"):

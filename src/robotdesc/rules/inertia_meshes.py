@@ -187,6 +187,9 @@ def explained_tensors(document: SourceDocument | None) -> frozenset[str]:
     I204 leaves to I206's gray band however far it is off."""
     if document is None or b"<!--" not in document.xml:
         return frozenset()
+    lowered = document.xml.lower()
+    if not any(word.encode() in lowered for word in ON_PURPOSE_WORDS):
+        return frozenset()  # no comment can say it: the document is not parsed again
     parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
                              remove_comments=False, remove_pis=True)
     try:

@@ -18,6 +18,7 @@ from lxml import etree
 from robotdesc.rules.package_files import LAUNCH_PY, PackageFile
 from robotdesc.rules.registry import SourceDocument
 from robotdesc.source import PROVENANCE_ATTR, Provenance, Span, decode_provenance
+from robotdesc.xml_input import shared_root
 
 # --- gz-sim and Gazebo Classic plugin names -------------------------------------------------
 
@@ -100,9 +101,8 @@ def elements(document: SourceDocument, path: str) -> Iterator[Element]:
             yield Element(node, _where(document, node))
 
 
-@functools.lru_cache(maxsize=8)
 def _root(xml: bytes) -> etree._Element | None:
-    return _parse(xml)
+    return shared_root(xml)
 
 
 def gazebo_plugins(document: SourceDocument) -> list[Element]:

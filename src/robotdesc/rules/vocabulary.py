@@ -28,6 +28,7 @@ from robotdesc.rules.urdf_vocabulary import (
     spec_of,
 )
 from robotdesc.source import PROVENANCE_ATTR, Provenance, Span, decode_provenance
+from robotdesc.xml_input import shared_root
 
 #: Xacro's substitutions, as they appear in a file that was not expanded.
 _SUBSTITUTION = re.compile(r"\$\{[^}]*\}|\$\([a-z]+[^)]*\)")
@@ -332,12 +333,7 @@ def first_xacro_use(document: SourceDocument) -> tuple[str, int] | None:
 
 def _parse(xml: bytes) -> etree._Element | None:
     """The document's root (the model's parse already refused DOCTYPEs and bad XML)."""
-    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False,
-                             huge_tree=False, remove_comments=True, remove_pis=True)
-    try:
-        return etree.fromstring(xml, parser)
-    except (etree.XMLSyntaxError, ValueError):
-        return None
+    return shared_root(xml)
 
 
 class _Walker:
