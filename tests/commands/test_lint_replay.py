@@ -129,6 +129,12 @@ def test_an_entry_not_sealed_with_the_key_is_not_replayed(
     assert _lint(capsys, str(top))[:2] == warm[:2]
     write_entry(entry, json.dumps({**record, "files": "nothing"}).encode())  # sealed, malformed
     assert _lint(capsys, str(top))[:2] == warm[:2]
+    for missing in ("code", "files", "arguments"):
+        write_entry(entry, json.dumps({k: v for k, v in record.items() if k != missing}
+                                      ).encode())
+        assert _lint(capsys, str(top))[:2] == warm[:2]
+    write_entry(entry, json.dumps({**record, "files": [[1, 2]]}).encode())
+    assert _lint(capsys, str(top))[:2] == warm[:2]
 
 
 def test_runs_that_write_or_search_are_not_recorded(

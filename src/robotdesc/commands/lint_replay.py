@@ -75,6 +75,16 @@ class Argument(NamedTuple):
     config: str | None
 
 
+class _Entry(NamedTuple):
+    """A recorded run, as read back: its exit code, output and what it depended on."""
+
+    code: int
+    out: str
+    err: str
+    files: list[CheckedFile]
+    arguments: list[Argument]
+
+
 class ReplayRecord(NamedTuple):
     """What makes a run replayable: the files its answer depended on and its arguments."""
 
@@ -104,15 +114,15 @@ def replay(words: Sequence[str]) -> int | None:
         return None
     try:
         entry = _parsed(json.loads(raw), key)
-        if entry is None or not _unchanged(*entry[3:]):
+        if entry is None or not _unchanged(entry.files, entry.arguments):
             return None
-    except (ValueError, TypeError, OSError, RecursionError, InputError):
+    except (ValueError, TypeError, KeyError, IndexError, AttributeError, OSError,
+            RecursionError, InputError):  # a malformed entry, a file gone: a miss
         return None
-    code, out, err = entry[0], entry[1], entry[2]
-    sys.stderr.write(err)
-    sys.stdout.write(out)
+    sys.stderr.write(entry.err)
+    sys.stdout.write(entry.out)
     sys.stdout.flush()
-    return code
+    return entry.code
 
 
 def replay_key(words: Sequence[str]) -> str:
@@ -140,8 +150,7 @@ def _entry_path(root: os.PathLike[str] | str, key: str) -> str:
     return os.path.join(root, "replay", key[:2], f"{key}.json")
 
 
-def _parsed(record: object, key: str) -> tuple[int, str, str, list[CheckedFile],
-                                                 list[Argument]] | None:
+def _parsed(record: object, key: str) -> _Entry | None:
     """The entry's fields when it has the expected shape and key; None otherwise."""
     if not isinstance(record, dict) or record.get("format") != _FORMAT \
             or record.get("key") != key:
@@ -167,7 +176,7 @@ def _parsed(record: object, key: str) -> tuple[int, str, str, list[CheckedFile],
         arguments.append(Argument(word, real, config))
     if not files or not arguments:
         return None
-    return code, out, err, files, arguments
+    return _Entry(code, out, err, files, arguments)
 
 
 def _unchanged(files: list[CheckedFile], arguments: list[Argument]) -> bool:
