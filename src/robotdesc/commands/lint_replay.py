@@ -197,14 +197,22 @@ def _unchanged(files: list[CheckedFile], arguments: list[Argument]) -> bool:
 
 
 class _Tee:
-    """A text stream that keeps a copy of what is written through it."""
+    """A text stream that keeps a copy of what is written through it, up to
+    `MAX_ENTRY_BYTES` characters (a long lint's progress on a terminal is not kept)."""
 
     def __init__(self, stream: TextIO) -> None:
         self.stream = stream
         self.parts: list[str] = []
+        self.kept = 0
+        self.overflow = False
 
     def write(self, text: str) -> int:
-        self.parts.append(text)
+        if not self.overflow:
+            self.kept += len(text)
+            self.overflow = self.kept > MAX_ENTRY_BYTES
+            self.parts.append(text)
+            if self.overflow:
+                self.parts.clear()
         return self.stream.write(text)
 
     def __getattr__(self, name: str) -> object:  # isatty, flush, fileno, encoding, ...
@@ -243,7 +251,7 @@ class Recording:
         its inputs changed during or shortly before it, or its output is too large."""
         root = cache_root()
         if root is None or not self.active or code not in _EXIT_CODES or not record.files \
-                or not record.arguments:
+                or not record.arguments or any(tee.overflow for tee in self._tees or ()):
             return
         settled = self.started_ns - SETTLE_NS
         for item in record.files:
