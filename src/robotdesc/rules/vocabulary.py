@@ -356,25 +356,28 @@ class _Walker:
         return Provenance(Span(self.path, element.sourceline or 0))
 
     def visit(self, element: etree._Element, spec: ElementSpec, inherited: _Where | None,
-              owner: str) -> None:
+              owner: _Owner) -> None:
         where = _Where(self, element, inherited)
         tag = element.tag
-        present = {name for name in element.attrib if not name.startswith("{")}
-        for name in sorted(present):
-            if name == PROVENANCE_ATTR or spec.known_attribute(name):
-                continue
-            hint = _suggest(name, spec.attributes - present, spec.attributes)
-            self.found.append(UnknownName(
-                "attribute", name, tag, hint or "it is not read by any URDF parser",
-                where.get(), f"{owner}@{name}"))
+        names = element.keys()  # attribute names (iterating an lxml element gives children)
+        unknown = [name for name in names if name not in spec.attributes
+                   and name != PROVENANCE_ATTR and not name.startswith("{")
+                   and not spec.known_attribute(name)]
+        if unknown:
+            present = {name for name in names if not name.startswith("{")}
+            for name in sorted(unknown):
+                hint = _suggest(name, spec.attributes - present, spec.attributes)
+                self.found.append(UnknownName(
+                    "attribute", name, tag, hint or "it is not read by any URDF parser",
+                    where.get(), f"{_owner_text(owner)}@{name}"))
         counts: dict[str, int] = {}
         for child in element:
-            if not isinstance(child.tag, str) or child.tag.startswith("{"):
-                continue  # comments; namespaced elements (xacro:*, drake:*) are not URDF's
             child_tag = child.tag
+            if not isinstance(child_tag, str) or child_tag.startswith("{"):
+                continue  # comments; namespaced elements (xacro:*, drake:*) are not URDF's
             index = counts.get(child_tag, 0)
             counts[child_tag] = index + 1
-            child_owner = _owner(owner, child, index)
+            child_owner = (owner, child, index)
             if child_tag in spec.children:
                 child_spec = spec_of(child_tag)
                 if child_spec is not None:
@@ -383,7 +386,7 @@ class _Walker:
                     and not _restates_defaults(child, tag):
                 self.found.append(UnknownName(
                     "element", child_tag, tag, _element_hint(child_tag, tag, spec),
-                    _Where(self, child, where).get(), child_owner))
+                    _Where(self, child, where).get(), _owner_text(child_owner)))
 
 
 class _Where:
@@ -402,13 +405,21 @@ class _Where:
         return self.value
 
 
-def _owner(owner: str, child: etree._Element, index: int) -> str:
+#: An element's place, built as the walk descends and named only when a finding needs it:
+#: "robot", or (the parent's place, the element, its index among same-tag siblings).
+_Owner = str | tuple["_Owner", etree._Element, int]
+
+
+def _owner_text(owner: _Owner) -> str:
     """A stable name: `link:base`, `joint:j1/limit`, `link:base/visual[1]/origin`."""
+    if isinstance(owner, str):
+        return owner
+    parent, child, index = owner
     tag = child.tag
     name = child.get("name")
-    if owner == "robot" and name is not None and tag in ("link", "joint", "material"):
+    if parent == "robot" and name is not None and tag in ("link", "joint", "material"):
         return f"{tag}:{name}"
-    return f"{owner}/{tag}" + (f"[{index}]" if index else "")
+    return f"{_owner_text(parent)}/{tag}" + (f"[{index}]" if index else "")
 
 
 def _suggest(name: str, preferred: set[str] | frozenset[str],
