@@ -475,6 +475,18 @@ def test_the_argument_check_reads_nothing_outside_the_package(canary):
     canary.assert_silent(done)
 
 
+def test_the_workers_stderr_cannot_write_escapes_to_the_terminal(canary):
+    """xacro's warnings pass from the worker's stderr to the log: control characters, the C1
+    CSI among them, are shown as escapes (`robotdesc.printable`), never sent."""
+    path = hostile(canary.repo, "import os\nos.write(2, b'warn\\x1b]0;title\\x07 \\xc2\\x9b31m\\n')\n"
+                   + forged({"ok": False, "kind": "ExpansionError", "call_stack": [],
+                             "span": None, "message": "bad"}), disarm=True)
+    done = canary.run("lint", "--no-cache", str(path))
+    assert done.returncode == 2
+    assert "xacro: warn\\x1b]0;title\\x07 \\x9b31m" in done.stderr
+    assert "\x1b" not in done.stderr and "\x9b" not in done.stderr and "\x07" not in done.stderr
+
+
 def test_a_forged_message_cannot_write_lines_or_escapes_of_its_own(canary):
     path = hostile(canary.repo, forged({
         "ok": False, "kind": "ExpansionError", "call_stack": [], "span": None,

@@ -28,14 +28,13 @@ from robotdesc.expansion.exchange import exchange, worker_group
 from robotdesc.expansion.packages import PackageResolverConfig
 from robotdesc.expansion.result import Expanded
 from robotdesc.expansion.roots import Roots, worker_roots
+from robotdesc.printable import printable
 from robotdesc.source import Span
 
 log = logging.getLogger(__name__)
 
 #: Whether the "cannot confine" warning was logged in this process (it is logged once).
 _WARNED_UNCONFINED: list[bool] = []
-#: Characters of the worker's stderr passed through to the log (no terminal control codes).
-_PRINTABLE = {c: None for c in range(32) if c not in (9,)} | {127: None}
 
 @dataclasses.dataclass(frozen=True)
 class WorkerLimits:
@@ -137,7 +136,7 @@ def run_worker(path: Path, args: dict[str, str], resolver: PackageResolverConfig
             Span(str(path)))
     for line in exchanged.err.decode("utf-8", "replace").splitlines():
         if line.strip():
-            log.warning("xacro: %s", line.translate(_PRINTABLE))
+            log.warning("xacro: %s", printable(line))
     if exchanged.err_dropped:
         log.warning("xacro: %d more bytes of the worker's messages were dropped",
                     exchanged.err_dropped)
