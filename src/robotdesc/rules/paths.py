@@ -118,15 +118,6 @@ def _reference(mesh: MeshRef, element: str) -> _Reference:
                       unfixable=f"'{path}' is in no ROS package (no package.xml above it)")
 
 
-def _shared(first: tuple[str, ...], second: tuple[str, ...]) -> tuple[str, ...]:
-    count = 0
-    for a, b in zip(first, second):
-        if a != b:
-            break
-        count += 1
-    return first[:count]
-
-
 def _folder_text(folders: tuple[str, ...]) -> str:
     joined = "/".join(folders)
     return joined if re.match(r"^[A-Za-z]:$", folders[0] if folders else "") else "/" + joined
@@ -137,11 +128,11 @@ def _groups(references: list[_Reference]) -> list[tuple[str, list[_Reference]]]:
     reference, each with its longest common folder: references of one source file whose
     paths share at least `_SHARED_FOLDERS` folders from the top (`/home/ana`,
     `/root/c3pzero_ws`), those with a package:// form apart from those without."""
-    groups: list[tuple[str, list[_Reference]]] = []
-    common: list[tuple[str, ...]] = []
+    groups: list[list[_Reference]] = []
+    common: list[tuple[str, ...]] = []  # each group's longest common folder
     for reference in references:
-        for index, (_, group) in enumerate(groups):
-            shared = _shared(common[index], reference.folders)
+        for index, group in enumerate(groups):
+            shared = tuple(os.path.commonprefix([common[index], reference.folders]))
             if (group[0].source == reference.source and len(shared) >= _SHARED_FOLDERS
                     and bool(group[0].unfixable) == bool(reference.unfixable)):
                 common[index] = shared
@@ -149,8 +140,8 @@ def _groups(references: list[_Reference]) -> list[tuple[str, list[_Reference]]]:
                 break
         else:
             common.append(reference.folders)
-            groups.append(("", [reference]))
-    return [(_folder_text(folders), group) for folders, (_, group) in zip(common, groups)]
+            groups.append([reference])
+    return [(_folder_text(folders), group) for folders, group in zip(common, groups)]
 
 
 def _path_findings(references: list[_Reference], problem: str) -> Iterator[Finding]:
