@@ -46,7 +46,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_OK
     if replayed is not None:
         return replayed
-    return _main(words, lint_replay.Recording(words))
+    return _main(words, lint_replay.Recording())
 
 
 def _main(words: list[str], recording: Recording | None) -> int:

@@ -92,21 +92,17 @@ class ReplayRecord(NamedTuple):
     arguments: tuple[Argument, ...]
 
 
-def is_lint(words: Sequence[str]) -> bool:
-    """Whether the command line is a lint (the only command replayed)."""
-    return bool(words) and words[0] == "lint"
-
-
 def argument(word: str) -> Argument:
     """The record of one file argument, as the replay will check it."""
     return Argument(word, os.path.realpath(word), find_config_file(os.path.abspath(word)))
 
 
 def replay(words: Sequence[str]) -> int | None:
-    """Print what the recorded run of `words` printed and return its exit code, when it is
-    recorded and nothing it depended on changed; else None (the caller lints)."""
+    """Print what the recorded run of `words` (a `robotdesc lint` command line) printed and
+    return its exit code, when it is recorded and nothing it depended on changed; else None
+    (the caller lints)."""
     root = cache_root()
-    if root is None or not is_lint(words):
+    if root is None:
         return None
     key = replay_key(words)
     raw = read_entry(_entry_path(root, key), MAX_ENTRY_BYTES)
@@ -220,11 +216,11 @@ class _Tee:
 
 
 class Recording:
-    """While active (a `with` block), keeps a copy of what the run writes on stdout and
-    stderr, for `store`; a pass-through for commands other than lint."""
+    """While active (a `with` block around a lint), keeps a copy of what the run writes on
+    stdout and stderr, for `store`; a pass-through when the caches are off."""
 
-    def __init__(self, words: Sequence[str]) -> None:
-        self.active = is_lint(words) and cache_root() is not None
+    def __init__(self) -> None:
+        self.active = cache_root() is not None
         self.started_ns = time.time_ns()
         self._tees: tuple[_Tee, _Tee] | None = None
 
@@ -257,10 +253,11 @@ class Recording:
         for item in record.files:
             if file_stamp(item.path) != item.stamp or max(item.stamp[3], item.stamp[4]) >= settled:
                 return
-        entry = {"format": _FORMAT, "key": replay_key(words), "code": code,
+        key = replay_key(words)
+        entry = {"format": _FORMAT, "key": key, "code": code,
                  "out": self.out(), "err": self.err(),
                  "files": [[f.path, list(f.stamp), f.digest] for f in record.files],
                  "arguments": [list(a) for a in record.arguments]}
         data = json.dumps(entry).encode()
         if len(data) <= MAX_ENTRY_BYTES:
-            write_entry(_entry_path(root, str(entry["key"])), data)
+            write_entry(_entry_path(root, key), data)

@@ -93,16 +93,12 @@ def _where(document: SourceDocument, node: etree._Element) -> Provenance:
 
 def elements(document: SourceDocument, path: str) -> Iterator[Element]:
     """Elements at an XPath of the document (`//ros2_control/joint`), with provenance."""
-    root = _root(document.xml)
+    root = shared_root(document.xml)
     if root is None:
         return
     for node in root.xpath(path):
         if isinstance(node, etree._Element):
             yield Element(node, _where(document, node))
-
-
-def _root(xml: bytes) -> etree._Element | None:
-    return shared_root(xml)
 
 
 def gazebo_plugins(document: SourceDocument) -> list[Element]:

@@ -287,7 +287,7 @@ def unknown_names(document: SourceDocument) -> tuple[UnknownName, ...]:
 
 @functools.lru_cache(maxsize=8)
 def _unknown_names(xml: bytes, path: str, files: tuple[str, ...]) -> tuple[UnknownName, ...]:
-    root = _parse(xml)
+    root = shared_root(xml)  # the model's parse already refused DOCTYPEs and bad XML
     if root is None or root.tag != "robot":
         return ()
     found: list[UnknownName] = []
@@ -311,7 +311,7 @@ def _once_per_place(found: list[UnknownName]) -> tuple[UnknownName, ...]:
 
 def first_xacro_use(document: SourceDocument) -> tuple[str, int] | None:
     """(what, line) of the first xacro element or substitution in `document`, or None."""
-    root = _parse(document.xml)
+    root = shared_root(document.xml)
     if root is None:
         return None
     for element in root.iter():
@@ -329,11 +329,6 @@ def first_xacro_use(document: SourceDocument) -> tuple[str, int] | None:
         if match:
             return f"<{etree.QName(element).localname}>{match.group(0)}", element.sourceline or 0
     return None
-
-
-def _parse(xml: bytes) -> etree._Element | None:
-    """The document's root (the model's parse already refused DOCTYPEs and bad XML)."""
-    return shared_root(xml)
 
 
 class _Walker:
