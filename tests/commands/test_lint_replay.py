@@ -178,3 +178,15 @@ def test_a_closed_pipe_during_a_replay_ends_quietly(
     monkeypatch.setattr(lint_replay.sys.stdout, "write", closed)
     assert main(["lint", str(top)]) == 0
     assert silenced == [True]
+
+
+def test_an_input_replaced_by_a_fifo_or_a_symlink_is_not_replayed_nor_opened(
+        tmp_path: Path, cache: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    top, _ = _stored(tmp_path, capsys, cache)
+    part = top.parent / "part.xacro"
+    part.rename(tmp_path / "part.saved")
+    os.mkfifo(part)  # opening it would block: the replay must only lstat it
+    assert lint_replay.replay(["lint", str(top)]) is None
+    part.unlink()
+    part.symlink_to(tmp_path / "part.saved")  # the same bytes, through a link
+    assert lint_replay.replay(["lint", str(top)]) is None
