@@ -181,12 +181,9 @@ class MeshContext:
         if self._meshes is None:
             found: list[MeshUse] = []
             for link in self.robot.links:
-                for kind in ("visual", "collision"):
-                    shapes: tuple[Visual | Collision, ...] = (
-                        link.visuals if kind == "visual" else link.collisions)
-                    for index, shape in enumerate(shapes):
-                        if isinstance(shape.geometry, MeshRef):
-                            found.append((link, kind, index, shape, shape.geometry))
+                for kind, index, shape in link.shapes():
+                    if isinstance(shape.geometry, MeshRef):
+                        found.append((link, kind, index, shape, shape.geometry))
             self._meshes = tuple(found)
         return iter(self._meshes)
 

@@ -8,6 +8,7 @@ is recorded in `Robot.value_issues`.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 from robotdesc.model.summary import robot_html, robot_repr
@@ -142,6 +143,14 @@ class Link:
     visuals: tuple[Visual, ...] = ()
     collisions: tuple[Collision, ...] = ()
     where: Provenance | None = None
+
+    def shapes(self) -> Iterator[tuple[str, int, Visual | Collision]]:
+        """Every `<visual>`, then every `<collision>`: ("visual" | "collision", its index
+        among its kind, the element) (`link:NAME/KIND[INDEX]` names it in findings)."""
+        for index, visual in enumerate(self.visuals):
+            yield "visual", index, visual
+        for index, collision in enumerate(self.collisions):
+            yield "collision", index, collision
 
 
 @dataclass(frozen=True)

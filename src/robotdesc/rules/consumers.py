@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from robotdesc.diagnostics import Finding, Severity
 from robotdesc.inertia.links import is_dynamics_model
 from robotdesc.model import tree
-from robotdesc.model.elements import Capsule, Collision, Joint, Link, Robot, Visual
+from robotdesc.model.elements import Capsule, Joint, Link, Robot
 from robotdesc.rules.registry import RuleContext, rule
 
 FAMILY = "consumers"
@@ -386,15 +386,12 @@ def yourdfpy_misreads(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     ```
     """
     for link in robot.links:
-        groups: tuple[tuple[str, tuple[Visual | Collision, ...]], ...] = (
-            ("visual", link.visuals), ("collision", link.collisions))
-        for kind, shapes in groups:
-            for number, shape in enumerate(shapes):
-                if isinstance(shape.geometry, Capsule):
-                    yield Finding(f"link '{link.name}' has a <capsule> {kind}: yourdfpy refuses "
-                                  "the whole model (\"Unknown tag: capsule\")",
-                                  shape.geometry.where or shape.where or link.where,
-                                  f"link:{link.name}/{kind}[{number}]")
+        for kind, number, shape in link.shapes():
+            if isinstance(shape.geometry, Capsule):
+                yield Finding(f"link '{link.name}' has a <capsule> {kind}: yourdfpy refuses "
+                              "the whole model (\"Unknown tag: capsule\")",
+                              shape.geometry.where or shape.where or link.where,
+                              f"link:{link.name}/{kind}[{number}]")
     joints = {joint.name: joint for joint in robot.joints}
     for joint in robot.joints:
         if joint.type in ("planar", "floating"):

@@ -11,7 +11,7 @@ from collections.abc import Iterator
 
 from robotdesc.diagnostics import Finding, Severity, ValueChange
 from robotdesc.expansion.packages import enclosing_package
-from robotdesc.model.elements import Collision, MeshRef, Robot, Visual
+from robotdesc.model.elements import MeshRef, Robot
 from robotdesc.rules.registry import RuleContext, rule
 
 FAMILY = "paths"
@@ -23,12 +23,9 @@ _WINDOWS_DRIVE = re.compile(r"^[A-Za-z]:[\\/]")
 def _meshes(robot: Robot) -> Iterator[tuple[MeshRef, str]]:
     """Every mesh of every visual and collision, with its stable element name."""
     for link in robot.links:
-        groups: tuple[tuple[str, tuple[Visual | Collision, ...]], ...] = (
-            ("visual", link.visuals), ("collision", link.collisions))
-        for kind, shapes in groups:
-            for index, shape in enumerate(shapes):
-                if isinstance(shape.geometry, MeshRef):
-                    yield shape.geometry, f"link:{link.name}/{kind}[{index}]"
+        for kind, index, shape in link.shapes():
+            if isinstance(shape.geometry, MeshRef):
+                yield shape.geometry, f"link:{link.name}/{kind}[{index}]"
 
 
 def _is_absolute(filename: str) -> bool:
