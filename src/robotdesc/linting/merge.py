@@ -60,8 +60,7 @@ class MergedFinding:
         ""."""
         if self.in_all_variants:
             return ""
-        labels = [run_label(args, matrix) for args, matrix
-                  in zip(self.variants, self.variant_matrix)]
+        labels = self._labels()
         shown = ", ".join(labels[:LISTED_VARIANTS])
         more = f" and {len(labels) - LISTED_VARIANTS} more" if len(labels) > LISTED_VARIANTS \
             else ""
@@ -77,13 +76,17 @@ class MergedFinding:
         return f"{len(self.elements)} elements: {shown}" + (f", ... {more} more" if more > 0
                                                             else "")
 
+    def _labels(self) -> list[str]:
+        """The variants it occurs in, as `run_label` names them."""
+        return [run_label(args, matrix) for args, matrix
+                in zip(self.variants, self.variant_matrix)]
+
     def variants_text(self) -> str:
         """The variants as one line: "in all 3 variants: [default arguments], ..." or
         "in 2 of 3 variants: ..." ("" when the target was linted once)."""
         if self.runs <= 1:
             return ""
-        labels = [run_label(args, matrix) for args, matrix
-                  in zip(self.variants, self.variant_matrix)]
+        labels = self._labels()
         shown = ", ".join(labels[:LISTED_VARIANTS])
         more = f", ... {len(labels) - LISTED_VARIANTS} more" if len(labels) > LISTED_VARIANTS \
             else ""
