@@ -33,7 +33,7 @@ from collections.abc import Sequence
 from types import TracebackType
 from typing import NamedTuple, TextIO
 
-from robotdesc._version import FINDING_BACKENDS, code_id, module_stamp
+from robotdesc.code_stamp import FINDING_BACKENDS, code_id, module_stamp
 from robotdesc.cache_dir import cache_root, read_entry, write_entry
 from robotdesc.config.files import find_config_file
 from robotdesc.digest import FileStamp, file_digest, file_stamp

@@ -20,7 +20,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from robotdesc._version import code_id, module_stamp
+from robotdesc.code_stamp import code_id, module_stamp
 from robotdesc.cache_dir import read_entry, write_entry
 from robotdesc.digest import file_digest
 from robotdesc.expansion.result import Expanded, MacroRecursion, ResolvedPackage, decode_input_facts

@@ -43,7 +43,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from robotdesc._version import FINDING_BACKENDS, code_id, module_stamp
+from robotdesc.code_stamp import FINDING_BACKENDS, code_id, module_stamp
 from robotdesc.cache_dir import cache_folder, read_entry, write_entry
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.digest import FileStamp, file_digest, file_stamp

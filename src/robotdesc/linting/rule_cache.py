@@ -20,7 +20,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
-from robotdesc._version import code_id, module_stamp
+from robotdesc.code_stamp import code_id, module_stamp
 from robotdesc.cache_dir import read_entry, write_entry
 from robotdesc.diagnostics import Finding, ValueChange
 from robotdesc.rules.registry import Rule

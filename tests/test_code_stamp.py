@@ -6,7 +6,7 @@ import os
 from pathlib import Path
 
 import robotdesc
-from robotdesc import _version
+from robotdesc import code_stamp
 
 
 def test_code_id_changes_when_a_module_changes(tmp_path: Path, monkeypatch) -> None:
@@ -14,14 +14,14 @@ def test_code_id_changes_when_a_module_changes(tmp_path: Path, monkeypatch) -> N
     package.mkdir()
     module = package / "rules.py"
     module.write_text("x = 1\n")
-    (package / "_version.py").write_text("")
-    monkeypatch.setattr(_version, "__file__", str(package / "_version.py"))
-    _version.code_id.cache_clear()
-    before = _version.code_id()
+    (package / "code_stamp.py").write_text("")
+    monkeypatch.setattr(code_stamp, "__file__", str(package / "code_stamp.py"))
+    code_stamp.code_id.cache_clear()
+    before = code_stamp.code_id()
     module.write_text("x = 22\n")
     os.utime(module, ns=(1, 1))
-    _version.code_id.cache_clear()
-    after = _version.code_id()
-    _version.code_id.cache_clear()
+    code_stamp.code_id.cache_clear()
+    after = code_stamp.code_id()
+    code_stamp.code_id.cache_clear()
     assert before != after
     assert before.startswith(f"{robotdesc.__version__}+")
