@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import atexit
 import dataclasses
 import json
 import logging
@@ -24,7 +25,7 @@ from robotdesc.expansion.answer import (
     parse_expanded,
     parse_failure,
 )
-from robotdesc.expansion.exchange import exchange, worker_group
+from robotdesc.expansion.exchange import exchange, kill_group, worker_group
 from robotdesc.expansion.packages import PackageResolverConfig
 from robotdesc.expansion.result import Expanded
 from robotdesc.expansion.roots import Roots, worker_roots
@@ -35,6 +36,10 @@ log = logging.getLogger(__name__)
 
 #: Whether the "cannot confine" warning was logged in this process (it is logged once).
 _WARNED_UNCONFINED: list[bool] = []
+#: The worker started ahead of its job (`start_early`), with the id of the process that
+#: started it (a forked child never takes its parent's worker).
+_EARLY: list[tuple[int, subprocess.Popen[bytes]]] = []
+_EARLY_CLEANUP: list[bool] = []
 
 @dataclasses.dataclass(frozen=True)
 class WorkerLimits:
@@ -84,6 +89,67 @@ def require_confinement(path: Path) -> None:
         "is code: pass --trusted only for files you trust", Span(str(path)))
 
 
+def _launch() -> subprocess.Popen[bytes]:
+    """Start a worker process: it imports what it needs, then waits for its job on stdin
+    (it reads nothing else, and confines itself once the job names its roots).
+
+    Raises:
+        OSError: the interpreter could not be started.
+    """
+    # -S: no site module (its .pth hooks cost 5-30 ms and run code the worker does not need);
+    # the worker gets the parent's import path instead, without the current folder.
+    search_path = [entry for entry in sys.path if entry]
+    bootstrap = (f"import sys; sys.path[:] = {search_path!r}; "
+                 f"from robotdesc.expansion.worker import main; main({os.getpid()})")
+    command = [sys.executable, "-B", "-S", *(["-P"] if sys.version_info >= (3, 11) else []),
+               "-c", bootstrap]
+    return subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, env=_worker_environment(),
+                            start_new_session=True)
+
+
+def start_early() -> None:
+    """Start the worker process now, before its job is known, for the next `run_worker` of
+    this process: the worker's interpreter start and imports (about 50 ms) then run beside
+    this process's own work up to the expansion (a cold `robotdesc lint`).
+
+    The worker is the same process `run_worker` would start (same command, environment and
+    limits; it reads its job, then limits and confines itself, before any xacro runs). One
+    that no expansion takes (an expansion-cache hit, a plain URDF, an error first) is killed
+    when this process exits; a failure to start it is left to `run_worker` to report.
+    """
+    if any(owner == os.getpid() for owner, _ in _EARLY):
+        return
+    try:
+        proc = _launch()
+    except OSError as exc:
+        log.debug("the xacro worker was not started early: %s", exc)
+        return
+    _EARLY.append((os.getpid(), proc))
+    if not _EARLY_CLEANUP:
+        _EARLY_CLEANUP.append(True)
+        atexit.register(drop_early)
+
+
+def _take_early() -> subprocess.Popen[bytes] | None:
+    """The worker `start_early` started in this process, if it is still waiting for a job."""
+    mine = [entry for entry in _EARLY if entry[0] == os.getpid()]
+    _EARLY[:] = [entry for entry in _EARLY if entry[0] != os.getpid()]
+    for _, proc in mine:
+        if proc.poll() is None:
+            return proc
+        kill_group(proc)  # ended before it was given a job: reap it, start another
+    return None
+
+
+def drop_early() -> None:
+    """Kill the worker `start_early` started in this process if no expansion took it."""
+    for owner, proc in list(_EARLY):
+        if owner == os.getpid():
+            _EARLY.remove((owner, proc))
+            kill_group(proc)
+
+
 def run_worker(path: Path, args: dict[str, str], resolver: PackageResolverConfig, *,
                trusted: bool, env: dict[str, str], limits: WorkerLimits,
                env_names: tuple[str, ...] = (),
@@ -111,19 +177,12 @@ def run_worker(path: Path, args: dict[str, str], resolver: PackageResolverConfig
         "data_roots": list(roots.data), "guard_roots": list(roots.guard),
         "env_names": sorted(env_names),
     }
-    # -S: no site module (its .pth hooks cost 5-30 ms and run code the worker does not need);
-    # the worker gets the parent's import path instead, without the current folder.
-    search_path = [entry for entry in sys.path if entry]
-    bootstrap = (f"import sys; sys.path[:] = {search_path!r}; "
-                 f"from robotdesc.expansion.worker import main; main({os.getpid()})")
-    command = [sys.executable, "-B", "-S", *(["-P"] if sys.version_info >= (3, 11) else []),
-               "-c", bootstrap]
-    try:
-        proc = subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                stderr=subprocess.PIPE, env=_worker_environment(),
-                                start_new_session=True)
-    except OSError as exc:
-        raise errors.RobotdescError(f"cannot start the xacro worker: {exc}") from exc
+    proc = _take_early()
+    if proc is None:
+        try:
+            proc = _launch()
+        except OSError as exc:
+            raise errors.RobotdescError(f"cannot start the xacro worker: {exc}") from exc
     with worker_group(proc):
         if on_start is not None:
             on_start()
