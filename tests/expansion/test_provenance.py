@@ -99,3 +99,13 @@ def test_find_in_an_expression_resolves_the_package(tmp_path):
     expanded = expand_file(robot, options=ExpandOptions(use_cache=False))
     assert b'name="upper"' in expanded.xml
     assert str(workspace / "arm_pkg" / "urdf" / "arm.xacro") in expanded.files_read
+
+
+def test_a_provenance_attribute_written_in_the_file_is_replaced(tmp_path):
+    robot = tmp_path / "robot.urdf.xacro"
+    robot.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                     f'  <link name="a" {PROVENANCE_ATTR}="9:99" type="x"/>\n</robot>\n')
+    expanded = expand_file(robot, options=ExpandOptions(use_cache=False))
+    (link,) = etree.fromstring(expanded.xml).xpath("/robot/link")
+    assert sorted(link.attrib) == sorted(["name", PROVENANCE_ATTR, "type"])
+    assert decode_provenance(link.get(PROVENANCE_ATTR), expanded.files).span == Span(str(robot), 2)

@@ -126,6 +126,22 @@ class ExpansionState:
     frames: list[dict[str, str]] = field(default_factory=list)
     pending_frames: list[dict[str, str]] = field(default_factory=list)
     _depth: dict[str, int] = field(default_factory=dict)
+    _chain: str | None = None  # `chain()` of the current call stack, until it changes
+
+    def chain(self) -> str:
+        """The active call sites, innermost first, compressed (`compress_chain`): computed
+        once per macro call, not once per element of its body."""
+        if self._chain is None:
+            self._chain = compress_chain([src for src, _ in reversed(self.call_stack)])
+        return self._chain
+
+    def push_call(self, src: str, name: str) -> None:
+        self.call_stack.append((src, name))
+        self._chain = None
+
+    def pop_call(self) -> None:
+        self.call_stack.pop()
+        self._chain = None
 
     def file_index(self, path: str) -> int:
         if path not in self.files:
@@ -146,9 +162,11 @@ def _make_builder(state: ExpansionState, path: str) -> xml.dom.expatbuilder.Expa
 
         def start_element_handler(self, name: str,  # noqa: D401 (expat callback)
                                   attributes: list[str]) -> None:
+            # the tag as one more attribute of the element expat read (`ordered_attributes`:
+            # name, value, ...), set by the builder as it sets the others: last, or in its
+            # place, with this value, when the file writes one itself
+            attributes += (PROVENANCE_ATTR, f"{index}:{self._parser.CurrentLineNumber}")
             super().start_element_handler(name, attributes)
-            element = cast(Element, self.curNode)  # the element just started
-            element.setAttribute(PROVENANCE_ATTR, f"{index}:{self._parser.CurrentLineNumber}")
 
         def start_doctype_decl_handler(self, *args: object) -> NoReturn:
             raise DoctypeRefused(path, self._parser.CurrentLineNumber,
@@ -222,6 +240,19 @@ def _as_xacro_reads(data: bytes, path: str) -> str | bytes:
     return text
 
 
+def plain_text_first(eval_text: Callable[[str, Table], object]) -> Callable[[str, Table], object]:
+    """xacro's `eval_text`, answering a text without "$" (most texts, and every provenance
+    value) at once: xacro's lexer reads such a text as one plain token and returns it
+    unchanged, after building a lexer and trying its four patterns."""
+
+    def evaluate(text: str, symbols: Table) -> object:
+        if type(text) is str and "$" not in text:
+            return text
+        return eval_text(text, symbols)
+
+    return evaluate
+
+
 def install(state: ExpansionState, find_package: Callable[[str], str],
             check_file: Callable[[str], None]) -> None:
     """Patch the xacro module so that expansion records provenance into `state`.
@@ -290,7 +321,7 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
             own = node.getAttribute(PROVENANCE_ATTR)
             if own:
                 if state.call_stack and ";" not in own:
-                    chain = compress_chain([src for src, _ in reversed(state.call_stack)])
+                    chain = state.chain()
                     passed = _passed_values(node) if state.frames and not body else {}
                     suffix = f"{PASSED_SEPARATOR}{encode_passed(passed)}" if passed else ""
                     node.setAttribute(PROVENANCE_ATTR, f"{own};{chain}{suffix}")
@@ -348,7 +379,7 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
             raise
         finally:
             del state.pending_frames[pending:]
-            state.call_stack.pop()
+            state.pop_call()
             state._depth[name] -= 1
 
     def _enter_macro(name: str, own: str, macros: Table, symbols: Table) -> None:
@@ -357,7 +388,7 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
             raise MacroTooDeep(
                 f"macro calls nested deeper than {state.max_macro_depth} levels "
                 f"(macro '{name}'; infinite recursion?)")
-        state.call_stack.append((own, name))
+        state.push_call(own, name)
         depth = state._depth.get(name, 0) + 1
         state._depth[name] = depth
         best = state.recursion.get(name)
@@ -398,6 +429,7 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
     xacro.parse = parse
     xacro.replace_node = splice_replace_node
     xacro.eval_all = eval_all
+    xacro.eval_text = plain_text_first(xacro.eval_text)
     xacro.handle_macro_call = handle_macro_call
     xacro.check_attrs = check_attrs
     xacro.abs_filename_spec = abs_filename_spec

@@ -29,6 +29,9 @@ _FORBIDDEN_EVENTS = (
     "smtplib.", "sys.setrecursionlimit", "pickle.find_class", "sqlite3.", "gc.get_objects",
     "gc.get_referrers", "gc.get_referents", "sys._current_frames", "mmap.",
 )
+#: Audit events an expansion raises thousands of times (xacro compiles and evaluates every
+#: expression) that safe mode never refuses: let through before the prefix test.
+_FREQUENT_EVENTS = frozenset({"compile", "exec", "builtins.id"})
 _WRITE_FLAGS = os.O_WRONLY | os.O_RDWR | os.O_APPEND | os.O_CREAT | os.O_TRUNC
 
 
@@ -85,7 +88,7 @@ class Guard:
             self.data_roots.append(real)
 
     def __call__(self, event: str, args: tuple[object, ...]) -> None:
-        if not self.armed:
+        if not self.armed or event in _FREQUENT_EVENTS:
             return
         if event == "open":
             self._check_open(args)
