@@ -431,12 +431,16 @@ def test_ending_the_parent_ends_the_worker(tmp_path, signum):
             os.kill(worker, signal.SIGKILL)
 
 
-@pytest.mark.parametrize("provenance", ["9:1", "0:1*999999999", "x", "0:1|a@7:2", "0:-1"],
+@pytest.mark.parametrize("provenance", ["9:1", "0:1*999999999", "x", "0:1|a@7:2", "0:-1",
+                                        "0:1;9:1", "9:1;0:2", "0:1*999999999;0:2"],
                          ids=["past-table", "huge-chain", "garbage", "passed-past-table",
-                              "negative"])
+                              "negative", "past-table-in-chain", "own-site-past-table",
+                              "huge-own-site-on-a-valid-chain"])
 def test_forged_provenance_in_the_document_is_refused(canary, provenance):
     top = str(canary.repo / "attack_pkg" / "urdf" / "attack.urdf.xacro")
-    xml = f"<robot name='x' _rd_src='0:1'><link name='l' _rd_src='{provenance}'/></robot>"
+    # a valid element first, whose call chain ("0:2") the forged one may share
+    xml = (f"<robot name='x' _rd_src='0:1'><link name='k' _rd_src='0:3;0:2'/>"
+           f"<link name='l' _rd_src='{provenance}'/></robot>")
     path = hostile(canary.repo, forged({"ok": True, "xml": xml, "files": [top],
                                         "files_read": [top], "packages": [],
                                         "macro_recursion": []}), disarm=True)

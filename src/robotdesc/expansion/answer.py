@@ -211,16 +211,35 @@ _PROVENANCE = re.compile(rb"\s" + PROVENANCE_ATTR.encode() + rb"""=(?:"([^"]*)"|
 _SITE = re.compile(r"([0-9]{1,9}):([0-9]{1,10})(?:\*([0-9]{1,9}))?")
 
 
-def _valid_provenance(value: str, files: int, max_chain: int) -> bool:
-    """Whether one provenance value decodes within the file table and the chain bound."""
-    chain, _, passed = value.partition(PASSED_SEPARATOR)
+def _chain_total(chain: str, files: int) -> int | None:
+    """How many call sites a chain ("SITE;SITE*N;...") stands for; None when a site is
+    malformed or indexes past the file table."""
     total = 0
     for part in chain.split(";"):
         site = _SITE.fullmatch(part)
         if site is None or int(site.group(1)) >= files:
-            return False
+            return None
         total += int(site.group(3) or 1)
-    if total > max_chain:
+    return total
+
+
+def _valid_provenance(value: str, files: int, max_chain: int,
+                      chains: dict[str, int | None]) -> bool:
+    """Whether one provenance value decodes within the file table and the chain bound.
+
+    Args:
+        chains: `_chain_total` of the call chains seen so far (after an element's own site):
+            the elements of one macro call share theirs.
+    """
+    chain, _, passed = value.partition(PASSED_SEPARATOR)
+    own, calls, rest = chain.partition(";")
+    total = _chain_total(own, files)
+    if calls and total is not None:
+        if rest not in chains:
+            chains[rest] = _chain_total(rest, files)
+        more = chains[rest]
+        total = None if more is None else total + more
+    if total is None or total > max_chain:
         return False
     for item in passed.split(",") if passed else ():
         name, _, where = item.rpartition("@")
@@ -244,8 +263,9 @@ def check_provenance(expanded: Expanded, top: Path, max_chain: int) -> None:
     Raises:
         InvalidAnswer: such an attribute.
     """
+    chains: dict[str, int | None] = {}
     for match in _PROVENANCE.finditer(expanded.xml):
         raw = match.group(1) if match.group(1) is not None else match.group(2)
         if not _valid_provenance(raw.decode("ascii", "replace"), len(expanded.files),
-                                 max_chain):
+                                 max_chain, chains):
             raise invalid(top, "malformed provenance in the document")

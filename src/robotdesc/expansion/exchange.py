@@ -20,6 +20,7 @@ import os
 import selectors
 import signal
 import subprocess
+import sys
 import threading
 import time
 from collections.abc import Iterator
@@ -39,6 +40,11 @@ _CHUNK = 1 << 16
 #: larger answer, each time this process's other thread (imports ahead, `robotdesc.linting`)
 #: holds the interpreter lock.
 _ANSWER_PIPE_BYTES = 1 << 20
+#: The interpreter's switch interval while the worker runs (s; Python's default: 0.005):
+#: this thread wakes for each piece of the answer, and while another thread of this process
+#: computes (imports ahead, `robotdesc.linting`) it waits up to the interval each time to
+#: get the interpreter back (a handful of times per answer).
+_SWITCH_INTERVAL_S = 0.0005
 #: Signals that end the parent and must take the worker with them.
 _ENDING_SIGNALS = (signal.SIGTERM, signal.SIGHUP)
 
@@ -82,6 +88,17 @@ def exchange(proc: subprocess.Popen[bytes], job: bytes, timeout_s: float,
         timeout_s: wall-clock seconds before the worker's group is killed.
         answer_cap: the most bytes of stdout kept before the worker is killed.
     """
+    assert proc.stdin is not None and proc.stdout is not None and proc.stderr is not None
+    switch = sys.getswitchinterval()
+    sys.setswitchinterval(min(switch, _SWITCH_INTERVAL_S))
+    try:
+        return _exchange(proc, job, timeout_s, answer_cap)
+    finally:
+        sys.setswitchinterval(switch)
+
+
+def _exchange(proc: subprocess.Popen[bytes], job: bytes, timeout_s: float,
+              answer_cap: int) -> Exchanged:
     assert proc.stdin is not None and proc.stdout is not None and proc.stderr is not None
     deadline = time.monotonic() + timeout_s
     out: list[bytes] = []
