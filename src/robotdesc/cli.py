@@ -32,6 +32,30 @@ BUG_REPORT_URL = "https://github.com/robotdesc/robotdesc/issues"
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit code (the console script exits with it)."""
     words = list(sys.argv[1:] if argv is None else argv)
+    if _expands_first(words):
+        from robotdesc.expansion.launch import start_early  # subprocess: only then
+
+        start_early()
+    try:
+        return _dispatch(words)
+    finally:
+        launch = sys.modules.get("robotdesc.expansion.launch")
+        if launch is not None:  # a worker started early that no expansion took: ended now
+            launch.drop_early()
+
+
+def _expands_first(words: list[str]) -> bool:
+    """Whether the command line is a `lint` or `expand` of a xacro file that reads no cache
+    (--no-cache: not even the replay of a lint answers it), so that its first work is to
+    start the xacro worker: started at once, its interpreter start and imports (about 50 ms)
+    run beside this process's own (`expansion.launch.start_early`). A guess from the words
+    only: a wrong one costs an idle process, killed when the command ends."""
+    return words[:1] in (["lint"], ["expand"]) and "--no-cache" in words \
+        and any(".xacro" in word for word in words[1:] if not word.startswith("-"))
+
+
+def _dispatch(words: list[str]) -> int:
+    """The command line's run: an unchanged lint's replay, or `_main`."""
     if words[:1] != ["lint"]:
         return _main(words, None)
     from robotdesc.commands import lint_replay  # only for a lint (--version must not pay)

@@ -1,4 +1,4 @@
-"""A worker started ahead of its job (`runner.start_early`): a cold lint uses it, an unused
+"""A worker started ahead of its job (`launch.start_early`): a cold lint uses it, an unused
 one is killed, and only the process that started it hands it a job."""
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from robotdesc.cli import main
-from robotdesc.expansion import ExpandOptions, expand_file, runner
+from robotdesc.expansion import ExpandOptions, expand_file, launch
 
 WS = Path(__file__).parent / "fixtures" / "ws"
 
@@ -25,16 +25,16 @@ def workspace(tmp_path: Path) -> Path:
 def launches(monkeypatch: pytest.MonkeyPatch) -> list[int]:
     """The pids of the workers started in this test (the early one included)."""
     started: list[int] = []
-    real = runner._launch
+    real = launch.launch
 
     def counting():
         proc = real()
         started.append(proc.pid)
         return proc
 
-    monkeypatch.setattr(runner, "_launch", counting)
+    monkeypatch.setattr(launch, "launch", counting)
     yield started
-    runner.drop_early()
+    launch.drop_early()
 
 
 def _gone(pid: int) -> bool:
@@ -48,39 +48,61 @@ def _gone(pid: int) -> bool:
 def test_a_cold_lint_expands_in_the_worker_it_started_early(workspace, launches, monkeypatch,
                                                             capsys) -> None:
     early: list[int] = []
-    real = runner.start_early
-    monkeypatch.setattr(runner, "start_early", lambda: early.append(1) or real())
+    real = launch.start_early
+    monkeypatch.setattr(launch, "start_early", lambda: early.append(1) or real())
     robot = workspace / "robot_pkg" / "urdf" / "robot.urdf.xacro"
     code = main(["lint", str(robot), "--no-cache", "--select", "J"])
     assert code in (0, 1)
-    assert early == [1]
+    assert early  # by the command line (--no-cache), again (a no-op) when the lint starts
     assert len(launches) == 1  # the early worker did the expansion: no second start
-    assert not runner._EARLY and _gone(launches[0])
+    assert not launch._EARLY and _gone(launches[0])
+
+
+@pytest.mark.parametrize("words", [["--select", "NO_SUCH_RULE"], ["--format", "nope"]])
+def test_a_command_that_ends_before_expanding_ends_its_early_worker(workspace, launches, words,
+                                                                   capsys) -> None:
+    robot = workspace / "robot_pkg" / "urdf" / "robot.urdf.xacro"
+    assert main(["lint", str(robot), "--no-cache", *words]) == 2
+    assert len(launches) == 1 and _gone(launches[0]) and not launch._EARLY
+
+
+def test_expand_with_no_cache_uses_the_early_worker(workspace, launches, capsys) -> None:
+    robot = workspace / "robot_pkg" / "urdf" / "robot.urdf.xacro"
+    assert main(["expand", str(robot), "--no-cache"]) == 0
+    assert b"<robot" in capsys.readouterr().out.encode()
+    assert len(launches) == 1 and _gone(launches[0])
+
+
+def test_no_early_worker_for_a_plain_urdf(launches, tmp_path, capsys) -> None:
+    urdf = tmp_path / "plain.urdf"
+    urdf.write_text('<robot name="p"><link name="a"/></robot>')
+    main(["lint", str(urdf), "--no-cache"])
+    assert launches == []
 
 
 def test_an_early_worker_no_expansion_takes_is_killed(workspace, launches) -> None:
-    runner.start_early()
-    runner.start_early()  # one at a time
+    launch.start_early()
+    launch.start_early()  # one at a time
     assert len(launches) == 1
-    runner.drop_early()
-    assert _gone(launches[0]) and not runner._EARLY
+    launch.drop_early()
+    assert _gone(launches[0]) and not launch._EARLY
 
 
 def test_the_early_worker_expands_like_a_new_one(workspace, launches) -> None:
     robot = workspace / "robot_pkg" / "urdf" / "robot.urdf.xacro"
     options = ExpandOptions(use_cache=False)
     fresh = expand_file(robot, {"length": "0.3"}, options=options)
-    runner.start_early()
+    launch.start_early()
     early = expand_file(robot, {"length": "0.3"}, options=options)
     assert len(launches) == 2 and early == fresh
 
 
 def test_another_process_never_takes_the_early_worker(workspace, launches,
                                                       monkeypatch) -> None:
-    runner.start_early()
-    monkeypatch.setattr(runner.os, "getpid", lambda: -1)  # as in a forked child
-    assert runner._take_early() is None
+    launch.start_early()
+    monkeypatch.setattr(launch.os, "getpid", lambda: -1)  # as in a forked child
+    assert launch.take_early() is None
     monkeypatch.undo()
-    taken = runner._take_early()
+    taken = launch.take_early()
     assert taken is not None
-    runner.kill_group(taken)
+    launch.kill_group(taken)

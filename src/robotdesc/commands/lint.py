@@ -145,13 +145,13 @@ def run_lint(ns: argparse.Namespace) -> int:
 
 def _start_worker_early(ns: argparse.Namespace, targets: list[LintTarget]) -> None:
     """Start the xacro worker before the lint machinery is imported, when this process lints
-    a xacro target next (`expansion.runner.start_early`): a cold lint's worker then starts
+    a xacro target next (`expansion.launch.start_early`): a cold lint's worker then starts
     about 35 ms sooner. Not with --fix/--diff, a Dask cluster or worker processes."""
     if ns.fix or ns.diff or getattr(ns, "scheduler", None) or (ns.jobs != 1 and len(targets) > 1):
         return
     if not any(".xacro" in os.path.basename(target.path) for target in targets):
         return
-    from robotdesc.expansion.runner import start_early  # subprocess: only for a lint that runs
+    from robotdesc.expansion.launch import start_early  # subprocess: only for a lint that runs
 
     start_early()
 

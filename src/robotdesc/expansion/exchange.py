@@ -29,6 +29,7 @@ from types import FrameType
 from typing import IO
 
 from robotdesc.atomic import deliver_signal
+from robotdesc.expansion.launch import kill_group
 
 log = logging.getLogger(__name__)
 
@@ -66,18 +67,6 @@ class Exchanged:
     err_dropped: int = 0
     overflow: bool = False
     timed_out: bool = False
-
-
-def kill_group(proc: subprocess.Popen[bytes]) -> None:
-    """Kill the worker's whole process group (it leads its own session) and reap it."""
-    try:
-        os.killpg(proc.pid, signal.SIGKILL)
-    except (ProcessLookupError, PermissionError):
-        pass
-    try:
-        proc.wait(timeout=10)
-    except subprocess.TimeoutExpired:
-        log.warning("the xacro worker (pid %d) did not end after SIGKILL", proc.pid)
 
 
 def exchange(proc: subprocess.Popen[bytes], job: bytes, timeout_s: float,

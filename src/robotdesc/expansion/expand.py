@@ -22,7 +22,7 @@ from robotdesc.digest import bytes_digest
 from robotdesc.expansion import cache
 from robotdesc.expansion.answer import check_expanded, max_chain
 from robotdesc.expansion.packages import PackageResolverConfig
-from robotdesc.expansion.result import Expanded, ExpansionNote, ResolvedPackage
+from robotdesc.expansion.result import Expanded, ExpansionNote
 from robotdesc.expansion.roots import worker_roots
 from robotdesc.source import Span
 

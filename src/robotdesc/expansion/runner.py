@@ -2,19 +2,15 @@
 
 from __future__ import annotations
 
-import atexit
 import dataclasses
 import json
 import logging
-import os
 import signal
-import subprocess
-import sys
 from collections.abc import Callable
 from pathlib import Path
 
 from robotdesc import errors
-from robotdesc.expansion import confine
+from robotdesc.expansion import confine, launch
 from robotdesc.expansion.answer import (
     MAX_TEXT,
     check_expanded,
@@ -25,7 +21,7 @@ from robotdesc.expansion.answer import (
     parse_expanded,
     parse_failure,
 )
-from robotdesc.expansion.exchange import exchange, kill_group, worker_group
+from robotdesc.expansion.exchange import exchange, worker_group
 from robotdesc.expansion.packages import PackageResolverConfig
 from robotdesc.expansion.result import Expanded
 from robotdesc.expansion.roots import Roots, worker_roots
@@ -36,10 +32,6 @@ log = logging.getLogger(__name__)
 
 #: Whether the "cannot confine" warning was logged in this process (it is logged once).
 _WARNED_UNCONFINED: list[bool] = []
-#: The worker started ahead of its job (`start_early`), with the id of the process that
-#: started it (a forked child never takes its parent's worker).
-_EARLY: list[tuple[int, subprocess.Popen[bytes]]] = []
-_EARLY_CLEANUP: list[bool] = []
 
 @dataclasses.dataclass(frozen=True)
 class WorkerLimits:
@@ -58,19 +50,6 @@ class WorkerLimits:
     max_output_bytes: int = 256 * 1024 * 1024
 
 
-def _worker_pythonpath() -> str:
-    """Where the worker finds robotdesc and installed packages (never the current folder)."""
-    own = str(Path(__file__).resolve().parents[2])
-    site = [p for p in sys.path if p and ("site-packages" in p or "dist-packages" in p)]
-    return os.pathsep.join(dict.fromkeys([own, *site]))
-
-
-def _worker_environment() -> dict[str, str]:
-    env = {"PYTHONPATH": _worker_pythonpath(), "PATH": os.defpath, "LC_ALL": "C.UTF-8",
-           "PYTHONDONTWRITEBYTECODE": "1", "PYTHONIOENCODING": "utf-8"}
-    return env
-
-
 def require_confinement(path: Path) -> None:
     """Refuse untrusted expansion where the worker cannot be confined (warned once).
 
@@ -87,67 +66,6 @@ def require_confinement(path: Path) -> None:
     raise errors.SandboxUnavailable(
         f"refusing to expand xacro without OS confinement ({support.reason}); a xacro file "
         "is code: pass --trusted only for files you trust", Span(str(path)))
-
-
-def _launch() -> subprocess.Popen[bytes]:
-    """Start a worker process: it imports what it needs, then waits for its job on stdin
-    (it reads nothing else, and confines itself once the job names its roots).
-
-    Raises:
-        OSError: the interpreter could not be started.
-    """
-    # -S: no site module (its .pth hooks cost 5-30 ms and run code the worker does not need);
-    # the worker gets the parent's import path instead, without the current folder.
-    search_path = [entry for entry in sys.path if entry]
-    bootstrap = (f"import sys; sys.path[:] = {search_path!r}; "
-                 f"from robotdesc.expansion.worker import main; main({os.getpid()})")
-    command = [sys.executable, "-B", "-S", *(["-P"] if sys.version_info >= (3, 11) else []),
-               "-c", bootstrap]
-    return subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, env=_worker_environment(),
-                            start_new_session=True)
-
-
-def start_early() -> None:
-    """Start the worker process now, before its job is known, for the next `run_worker` of
-    this process: the worker's interpreter start and imports (about 50 ms) then run beside
-    this process's own work up to the expansion (a cold `robotdesc lint`).
-
-    The worker is the same process `run_worker` would start (same command, environment and
-    limits; it reads its job, then limits and confines itself, before any xacro runs). One
-    that no expansion takes (an expansion-cache hit, a plain URDF, an error first) is killed
-    when this process exits; a failure to start it is left to `run_worker` to report.
-    """
-    if any(owner == os.getpid() for owner, _ in _EARLY):
-        return
-    try:
-        proc = _launch()
-    except OSError as exc:
-        log.debug("the xacro worker was not started early: %s", exc)
-        return
-    _EARLY.append((os.getpid(), proc))
-    if not _EARLY_CLEANUP:
-        _EARLY_CLEANUP.append(True)
-        atexit.register(drop_early)
-
-
-def _take_early() -> subprocess.Popen[bytes] | None:
-    """The worker `start_early` started in this process, if it is still waiting for a job."""
-    mine = [entry for entry in _EARLY if entry[0] == os.getpid()]
-    _EARLY[:] = [entry for entry in _EARLY if entry[0] != os.getpid()]
-    for _, proc in mine:
-        if proc.poll() is None:
-            return proc
-        kill_group(proc)  # ended before it was given a job: reap it, start another
-    return None
-
-
-def drop_early() -> None:
-    """Kill the worker `start_early` started in this process if no expansion took it."""
-    for owner, proc in list(_EARLY):
-        if owner == os.getpid():
-            _EARLY.remove((owner, proc))
-            kill_group(proc)
 
 
 def run_worker(path: Path, args: dict[str, str], resolver: PackageResolverConfig, *,
@@ -177,10 +95,10 @@ def run_worker(path: Path, args: dict[str, str], resolver: PackageResolverConfig
         "data_roots": list(roots.data), "guard_roots": list(roots.guard),
         "env_names": sorted(env_names),
     }
-    proc = _take_early()
+    proc = launch.take_early()
     if proc is None:
         try:
-            proc = _launch()
+            proc = launch.launch()
         except OSError as exc:
             raise errors.RobotdescError(f"cannot start the xacro worker: {exc}") from exc
     with worker_group(proc):
