@@ -152,11 +152,11 @@ def test_rule_entries_swapped_between_keys_are_a_miss(tmp_path):
     rule_cache.store(tmp_path, "k1", one)
     rule_cache.store(tmp_path, "k2", two)
     assert rule_cache.load(tmp_path, "k1") == one
-    first, second = ((tmp_path / "rules" / f"{k}.json").read_bytes() for k in ("k1", "k2"))
-    (tmp_path / "rules" / "k1.json").write_bytes(second)
+    first, second = (rule_cache.entry_path(tmp_path, k).read_bytes() for k in ("k1", "k2"))
+    rule_cache.entry_path(tmp_path, "k1").write_bytes(second)
     assert rule_cache.load(tmp_path, "k1") is None
-    (tmp_path / "rules" / "k1.json").unlink()
-    os.mkfifo(tmp_path / "rules" / "k1.json")
+    rule_cache.entry_path(tmp_path, "k1").unlink()
+    os.mkfifo(rule_cache.entry_path(tmp_path, "k1"))
     assert rule_cache.load(tmp_path, "k1") is None
 
 

@@ -30,7 +30,7 @@ def test_findings_round_trip(tmp_path):
     rule_cache.store(tmp_path, "k", [finding])
     assert rule_cache.load(tmp_path, "k") == [finding]
     assert rule_cache.load(tmp_path, "missing") is None
-    (tmp_path / "rules" / "k.json").write_text("{broken")
+    rule_cache.entry_path(tmp_path, "k").write_text("{broken")
     assert rule_cache.load(tmp_path, "k") is None
 
 
@@ -55,7 +55,7 @@ def test_a_second_lint_gives_the_same_findings_from_the_cache(tmp_path, monkeypa
     options = ExpandOptions(cache_dir=str(tmp_path / "cache"))
     first = lint_file(str(urdf), expand_options=options, select=["K201"])
     assert [d.code for d in first.diagnostics] == ["K201"]
-    assert list((tmp_path / "cache" / "rules").glob("*.json"))
+    assert list((tmp_path / "cache" / "rules").glob("*/*.json"))
     monkeypatch.setattr("robotdesc.rules.registry.run_rule",
                         lambda *a, **k: (_ for _ in ()).throw(AssertionError("rule ran again")))
     second = lint_file(str(urdf), expand_options=options, select=["K201"])

@@ -65,3 +65,25 @@ def test_lookups_are_remembered(context: MeshContext) -> None:
 def test_find_package_is_public_and_never_falls_back(context: MeshContext, tmp_path: Path) -> None:
     assert context.find_package("pkg") == str(tmp_path / "pkg")
     assert context.find_package("twin") is None
+
+
+def test_a_link_of_primitives_is_measured_once_per_link_object(tmp_path: Path) -> None:
+    """The variants of a description and an editor's saves share unchanged links (the
+    model's parse): a link without meshes is measured once; a link with a mesh is measured
+    per context (its file may have changed)."""
+    robot = parse_urdf(URDF.replace('<mesh filename="package://other/box.stl"/>',
+                                    '<cylinder radius="0.1" length="0.2"/>').encode(),
+                       str(tmp_path / "r.urdf"))
+    (tmp_path / "pkg").mkdir()
+    stl = tmp_path / "pkg" / "box.stl"
+    write_binary_stl(stl, box_triangles((1.0, 2.0, 3.0)))
+    first, second = (MeshContext(robot, MeshSettings(cache=False), {"pkg": str(tmp_path / "pkg")}.get)
+                     for _ in range(2))
+    wheel, body = robot.link("b"), robot.link("a")
+    assert second.link_geometry(wheel) is first.link_geometry(wheel)
+    before = first.link_geometry(body, "visual")
+    write_binary_stl(stl, box_triangles((1.0, 1.0, 1.0)))
+    after = MeshContext(robot, MeshSettings(cache=False), {"pkg": str(tmp_path / "pkg")}.get) \
+        .link_geometry(body, "visual")
+    assert before.properties.volume == pytest.approx(6.0)
+    assert after.properties.volume == pytest.approx(1.0)

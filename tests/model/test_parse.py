@@ -433,3 +433,43 @@ def test_example_robot_data_urdfs_parse(path: Path) -> None:
     for link in robot.links:
         assert link.where.span.path == str(path) and link.where.span.line > 0
     assert not [i for i in robot.value_issues if "robot" not in i.message], robot.value_issues
+
+
+def _expanded_from(source: Path) -> bytes:
+    return (f'<robot name="r" {PROVENANCE_ATTR}="0:1">'
+            f'<link name="a" {PROVENANCE_ATTR}="0:2"><inertial {PROVENANCE_ATTR}="0:3">'
+            f'<mass value="oops" {PROVENANCE_ATTR}="0:3"/></inertial></link>'
+            f'<joint name="j" type="fixed" {PROVENANCE_ATTR}="0:4"><parent link="a"/>'
+            f'<child link="b"/></joint><link name="b" {PROVENANCE_ATTR}="0:5"/>'
+            "</robot>").encode()
+
+
+def test_parses_with_one_file_table_share_unchanged_elements(tmp_path: Path) -> None:
+    """The variants of a description and an editor's saves parse the same elements again:
+    the second parse reuses the first one's (the same objects, the same value issues)."""
+    source = tmp_path / "r.xacro"
+    source.write_text('<robot name="r">\n<link name="a">\n<mass value="oops"/>\n'
+                      '<joint name="j"/>\n<link name="b"/>\n</robot>\n')
+    files = (str(source),)
+    first = parse_urdf(_expanded_from(source), str(source), files)
+    second = parse_urdf(_expanded_from(source), str(source), files)
+    assert second.links[0] is first.links[0] and second.joints[0] is first.joints[0]
+    assert second.value_issues == first.value_issues and len(first.value_issues) == 2
+    changed = _expanded_from(source).replace(b'name="b"', b'name="c"')
+    third = parse_urdf(changed, str(source), files)
+    assert third.links[0] is first.links[0] and third.links[1].name == "c"
+
+
+def test_a_shared_element_follows_an_edit_that_moves_its_column(tmp_path: Path) -> None:
+    """An element whose bytes did not change is read again when its source line moved (its
+    column comes from the source file)."""
+    source = tmp_path / "r.xacro"
+    source.write_text('<robot name="r">\n<link name="a">\n<mass value="oops"/>\n'
+                      '<joint name="j"/>\n<link name="b"/>\n</robot>\n')
+    files = (str(source),)
+    before = parse_urdf(_expanded_from(source), str(source), files)
+    assert before.links[1].where.span.col == 1
+    source.write_text('<robot name="r">\n<link name="a">\n<mass value="oops"/>\n'
+                      '<joint name="j"/>\n    <link name="b"/>\n</robot>\n')
+    after = parse_urdf(_expanded_from(source), str(source), files)
+    assert after.links[1].where.span.col == 5

@@ -65,9 +65,23 @@ def declared_tensor(inertial: Inertial) -> Mat3:
     Raises:
         ValueError: the `<inertial>` has no `<inertia>` (callers check that it has).
     """
-    if inertial.inertia is None:
+    inertia = inertial.inertia
+    if inertia is None:
         raise ValueError("the <inertial> declares no <inertia>")
-    return rotated(inertial.inertia.matrix(), inertial.origin.rpy)
+    # + 0.0: -0.0 and 0.0 are one key; the tensor is computed from the key's zeros
+    roll, pitch, yaw = inertial.origin.rpy
+    return _rotated((inertia.ixx + 0.0, inertia.ixy + 0.0, inertia.ixz + 0.0,
+                     inertia.iyy + 0.0, inertia.iyz + 0.0, inertia.izz + 0.0),
+                    (roll + 0.0, pitch + 0.0, yaw + 0.0))
+
+
+@functools.lru_cache(maxsize=4096)
+def _rotated(moments: tuple[float, float, float, float, float, float],
+             rpy: tuple[float, float, float]) -> Mat3:
+    """`declared_tensor` on values (ixx, ixy, ixz, iyy, iyz, izz in kg*m^2; rpy in rad):
+    links made by one macro declare the same numbers."""
+    ixx, ixy, ixz, iyy, iyz, izz = moments
+    return rotated(((ixx, ixy, ixz), (ixy, iyy, iyz), (ixz, iyz, izz)), rpy)
 
 
 def compare_inertia(inertial: Inertial, geometry: MassProperties,

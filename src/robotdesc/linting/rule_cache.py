@@ -80,7 +80,7 @@ def load(cache_dir: Path | None, key: str,
     """
     if cache_dir is None:
         return None
-    raw = read_entry(cache_dir / "rules" / f"{key}.json", MAX_ENTRY_BYTES)
+    raw = read_entry(entry_path(cache_dir, key), MAX_ENTRY_BYTES)
     if raw is None:
         return None
     try:
@@ -98,13 +98,21 @@ def load(cache_dir: Path | None, key: str,
         return None
 
 
+def entry_path(cache_dir: Path, key: str) -> Path:
+    """Where the entry of `key` is kept: in a folder per first two characters of the key, as
+    the other caches (a write lists its folder for stale temporaries: a few dozen entries,
+    not thousands)."""
+    return cache_dir / "rules" / key[:2] / f"{key}.json"
+
+
 def store(cache_dir: Path | None, key: str, findings: list[Finding]) -> None:
     """Record one rule's findings under `key` (None: the cache is off)."""
     if cache_dir is None:
         return
-    folder = cache_dir / "rules"
+    path = entry_path(cache_dir, key)
+    folder = path.parent
     try:
-        write_entry(folder / f"{key}.json", json.dumps(
+        write_entry(path, json.dumps(
             {"key": key, "findings": [_record(f) for f in findings]}).encode("utf-8"))
     except OSError as exc:
         log.warning("rule cache: cannot write in %s (%s)", folder, exc)

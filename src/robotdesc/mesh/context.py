@@ -200,8 +200,23 @@ class MeshContext:
         """
         key = (link.name, source)
         if key not in self._links:
-            self._links[key] = self._measure(link, source or self.settings.inertia_source)
+            self._links[key] = self._link_geometry(link, source or self.settings.inertia_source)
         return self._links[key]
+
+    def _link_geometry(self, link: Link, wanted: str) -> LinkGeometry:
+        """`_measure`, for a link of primitives only (no file read) once per link object in
+        this process: the model's parse shares unchanged links between the variants of a
+        description and an editor's saves."""
+        if any(isinstance(shape.geometry, MeshRef) for _, _, shape in link.shapes()):
+            return self._measure(link, wanted)
+        remembered = _PRIMITIVE_LINKS.get((id(link), wanted))
+        if remembered is not None and remembered[0] is link:
+            return remembered[1]
+        measured = self._measure(link, wanted)
+        if len(_PRIMITIVE_LINKS) >= _PRIMITIVE_LINK_ENTRIES:
+            _PRIMITIVE_LINKS.clear()
+        _PRIMITIVE_LINKS[(id(link), wanted)] = (link, measured)  # `link` kept: its id stays its
+        return measured
 
     def _measure(self, link: Link, wanted: str) -> LinkGeometry:
         other = "visual" if wanted == "collision" else "collision"
@@ -302,6 +317,12 @@ _Combined = tuple[MassProperties | None, tuple[Vec3, Vec3] | None, tuple[str, ..
 #: description and an editor's saves measure the same links again and again.
 _COMBINED: dict[tuple[_Measured, ...], _Combined] = {}
 _COMBINED_ENTRIES = 100_000
+
+
+#: (id of a link of primitives only, wanted source) -> (the link, its measured geometry); the
+#: link is held so that its id is not reused while the entry lives.
+_PRIMITIVE_LINKS: dict[tuple[int, str], tuple[Link, LinkGeometry]] = {}
+_PRIMITIVE_LINK_ENTRIES = 50_000
 
 
 def _combine(measured: tuple[_Measured, ...]) -> _Combined:

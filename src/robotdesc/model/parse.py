@@ -13,8 +13,8 @@ import math
 import os
 import re
 from collections.abc import Callable
-from dataclasses import replace
-from typing import TypeVar
+from dataclasses import dataclass, replace
+from typing import TypeVar, cast
 
 from lxml import etree
 
@@ -143,6 +143,10 @@ class _RobotReader:
         self._spans = shared.spans
         self._chains = shared.chains
         self._earlier = shared.decoded
+        self._elements = shared.elements
+        #: the source files whose state the provenance decoded since the last reset (the
+        #: files a memoized element depends on: see `_memoized`)
+        self._consulted: set[str] = set()
 
     # -- provenance -------------------------------------------------------------------------
 
@@ -154,8 +158,9 @@ class _RobotReader:
                 key = (value, element.tag)
                 found = self._decoded.get(key)
                 if found is None:
-                    found = self._earlier_decoding(key) or self._decode(value, element,
-                                                                        inherited)
+                    return self._earlier_decoding(key) or self._decode(value, element,
+                                                                       inherited)
+                self._consulted.add(found.span.path)
                 return found
             if inherited is not None:
                 return inherited
@@ -191,6 +196,7 @@ class _RobotReader:
         found = self._decoded[(value, element.tag)] = Provenance(
             Span(span.path, span.line, col) if col else span, chain, passed)
         self._earlier[(value, element.tag)] = (found, self._columns.state(span.path))
+        self._consulted.add(span.path)
         return found
 
     def _earlier_decoding(self, key: tuple[str, str]) -> Provenance | None:
@@ -200,7 +206,34 @@ class _RobotReader:
         if earlier is None or self._columns.state(earlier[0].span.path) != earlier[1]:
             return None
         self._decoded[key] = earlier[0]
+        self._consulted.add(earlier[0].span.path)
         return earlier[0]
+
+    def _memoized(self, element: etree._Element, parent: Provenance,
+                  read: Callable[[etree._Element, Provenance], _Read]) -> _Read:
+        """`read(element, parent)` of a top-level element, or what an earlier parse with this
+        file table read from the same bytes under the same parent provenance, when the files
+        its provenance was decoded from (their columns) are unchanged: the variants of one
+        description and an editor's saves share most elements. Its value issues are
+        recorded again."""
+        if not self.files:
+            return read(element, parent)
+        key = (etree.tostring(element, with_tail=False), parent)
+        earlier = self._elements.get(key)
+        if earlier is not None and all(self._columns.state(path) == state
+                                       for path, state in earlier.files):
+            self.issues.extend(earlier.issues)
+            return cast("_Read", earlier.value)
+        issues_before, consulted = len(self.issues), self._consulted
+        self._consulted = set()
+        value = read(element, parent)
+        files = tuple((path, self._columns.state(path)) for path in sorted(self._consulted))
+        consulted.update(self._consulted)
+        self._consulted = consulted
+        if len(self._elements) >= _MEMOIZED_ELEMENTS:
+            self._elements.clear()
+        self._elements[key] = _Memoized(value, tuple(self.issues[issues_before:]), files)
+        return value
 
     # -- values -----------------------------------------------------------------------------
 
@@ -277,19 +310,22 @@ class _RobotReader:
         for child in root:
             tag = child.tag
             if tag == "link":
-                links.append(self.link(child, where))
+                links.append(self._memoized(child, where, self.link))
             elif tag == "joint":
-                joints.append(self.joint(child, where))
+                joints.append(self._memoized(child, where, self.joint))
             elif tag == "material":
-                materials.append(self.material(child, where, "material"))
+                materials.append(self._memoized(child, where, self._top_material))
             elif tag == "transmission":
-                transmissions.append(self.transmission(child, where))
+                transmissions.append(self._memoized(child, where, self.transmission))
             elif tag == "gazebo":
-                gazebo.append(self.gazebo(child, where))
+                gazebo.append(self._memoized(child, where, self.gazebo))
         return Robot(name=name or "", links=tuple(links), joints=tuple(joints),
                      materials=tuple(materials), transmissions=tuple(transmissions),
                      gazebo=tuple(gazebo), value_issues=tuple(self.issues), source=self.path,
                      where=where)
+
+    def _top_material(self, element: etree._Element, parent: Provenance) -> Material:
+        return self.material(element, parent, "material")
 
     def pose(self, element: etree._Element | None, parent: Provenance, owner: str) -> Pose:
         if element is None:
@@ -635,15 +671,31 @@ _START_TAGS: dict[str, re.Pattern[str]] = {}
 _START_TAG_PATTERNS = 1024
 
 
+@dataclass(frozen=True)
+class _Memoized:
+    """A top-level element as an earlier parse read it: the value, the value issues it
+    recorded, and the state of each source file its provenance was decoded from."""
+
+    value: object
+    issues: tuple[ValueIssue, ...]
+    files: tuple[tuple[str, _FileState], ...]
+
+
+#: Top-level elements remembered per file table (a description has hundreds).
+_MEMOIZED_ELEMENTS = 20_000
+
+
 class _Decodings:
     """What parses with one file table share: decoded positions and call chains (functions
     of the attribute text and the table alone), each attribute's provenance with the state
-    of the file its column was read from, and the column finder."""
+    of the file its column was read from, the column finder, and the top-level elements
+    read (keyed by their bytes and parent provenance)."""
 
     def __init__(self) -> None:
         self.spans: dict[str, Span] = {}
         self.chains: dict[str, tuple[Span, ...]] = {}
         self.decoded: dict[tuple[str, str], tuple[Provenance, _FileState]] = {}
+        self.elements: dict[tuple[bytes, Provenance], _Memoized] = {}
         self.columns = _ColumnFinder()
 
 

@@ -94,27 +94,45 @@ def patch_document(xml: bytes, files: tuple[str, ...], path: str,
     if not indexes:
         return None
     for change in changes:
-        sites = b"|".join(index + b":" + str(change.line).encode() for index in indexes)
-        tag = re.compile(rb"<[A-Za-z_][^<>]*?\s" + PROVENANCE_ATTR.encode() + rb'="(?:' + sites
-                         + rb')[";|*][^<>]*>')
+        sites = [index + b":" + str(change.line).encode() for index in indexes]
         name = re.escape(change.attribute.encode())
         old = _escaped(change.old)
         attribute = re.compile(rb"(\s" + name + rb'=")' + re.escape(old) + rb'"')
-        failed = False
-
-        def edit(match: re.Match[bytes]) -> bytes:
-            nonlocal failed
-            text = match.group(0)
-            edited, count = attribute.subn(lambda m: m.group(1) + _escaped(change.new) + b'"',
-                                           text)
+        replacement = _escaped(change.new)
+        parts: list[bytes] = []
+        done = 0
+        for start, end in _tags_at(xml, sites):
+            edited, count = attribute.subn(lambda m: m.group(1) + replacement + b'"',
+                                           xml[start:end])
             if count != 1:
-                failed = True
-            return edited
-
-        xml = tag.sub(edit, xml)
-        if failed:
-            return None
+                return None
+            parts += [xml[done:start], edited]
+            done = end
+        xml = b"".join(parts) + xml[done:] if parts else xml
     return xml
+
+
+def _tags_at(xml: bytes, sites: list[bytes]) -> list[tuple[int, int]]:
+    """(start, end) offsets of the start tags whose provenance attribute names one of
+    `sites` ("FILE_INDEX:LINE") as the element's own position, in document order."""
+    found: list[tuple[int, int]] = []
+    for site in sites:
+        needle = PROVENANCE_ATTR.encode() + b'="' + site
+        at = xml.find(needle)
+        while at >= 0:
+            after = at + len(needle)
+            start = xml.rfind(b"<", 0, at)
+            end = xml.find(b">", after)
+            if (xml[at - 1:at].isspace() and xml[after:after + 1] in (b'"', b";", b"|", b"*")
+                    and start >= 0 and end >= 0 and _NAME_START.match(xml, start + 1)
+                    and xml.find(b">", start, at) < 0 and xml.find(b"<", after, end) < 0):
+                found.append((start, end + 1))
+            at = xml.find(needle, after)
+    return sorted(set(found))
+
+
+#: The first character of an element name.
+_NAME_START = re.compile(rb"[A-Za-z_]")
 
 
 def _escaped(value: str) -> bytes:
