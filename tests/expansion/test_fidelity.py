@@ -55,3 +55,14 @@ def test_the_eval_text_shortcut_answers_as_xacro_does(text):
         return
     assert quick(text, symbols) == expected
     assert type(quick(text, symbols)) is type(expected)
+
+
+def test_an_expression_compiled_once_evaluates_with_each_call_s_symbols():
+    compile_ = hooks.compiling_once(compile)
+    first = compile_("a + 1", "<expression>", "eval")
+    assert compile_("a + 1", "<expression>", "eval") is first
+    assert eval(first, {"a": 1}) == 2 and eval(first, {"a": 41}) == 42
+    with pytest.raises(SyntaxError):
+        compile_("a +", "<expression>", "eval")
+    with pytest.raises(SyntaxError):  # not kept: fails again
+        compile_("a +", "<expression>", "eval")
