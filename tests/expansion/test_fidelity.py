@@ -11,9 +11,8 @@ import sys
 from pathlib import Path
 
 import pytest
-import xacro
 
-from robotdesc.expansion import ExpandOptions, expand_file, hooks
+from robotdesc.expansion import ExpandOptions, expand_file
 from robotdesc.source import strip_provenance
 
 HERE = Path(__file__).parent
@@ -39,30 +38,3 @@ def _plain_xacro(path: Path, args: dict[str, str]) -> bytes:
 def test_output_matches_plain_xacro(path, args):
     ours = expand_file(path, args, options=ExpandOptions(use_cache=False))
     assert strip_provenance(ours.xml) == _plain_xacro(path, args)
-
-
-@pytest.mark.parametrize("text", ["", "plain", "a b\n  c", "$", "$$", "x$", "$x", "${1+2}",
-                                  "$(arg a)", "$${x}", "a ${1} b", "$$(x)",
-                                  "0:12;1:3*2|link.name@0:4"])
-def test_the_eval_text_shortcut_answers_as_xacro_does(text):
-    symbols = xacro.Table()
-    quick = hooks.plain_text_first(xacro.eval_text)
-    try:
-        expected = xacro.eval_text(text, symbols)
-    except Exception as exc:  # noqa: BLE001 -- the same failure either way
-        with pytest.raises(type(exc)):
-            quick(text, symbols)
-        return
-    assert quick(text, symbols) == expected
-    assert type(quick(text, symbols)) is type(expected)
-
-
-def test_an_expression_compiled_once_evaluates_with_each_call_s_symbols():
-    compile_ = hooks.compiling_once(compile)
-    first = compile_("a + 1", "<expression>", "eval")
-    assert compile_("a + 1", "<expression>", "eval") is first
-    assert eval(first, {"a": 1}) == 2 and eval(first, {"a": 41}) == 42
-    with pytest.raises(SyntaxError):
-        compile_("a +", "<expression>", "eval")
-    with pytest.raises(SyntaxError):  # not kept: fails again
-        compile_("a +", "<expression>", "eval")

@@ -17,10 +17,11 @@ import re
 import sys
 import xml.dom
 import xml.dom.expatbuilder
+import xml.dom.minidom
 import xml.parsers.expat
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Callable, NoReturn, cast
-from xml.dom.minidom import Document, Element, Node
+from xml.dom.minidom import Attr, Document, Element, Node, _append_child  # type: ignore[attr-defined]
 
 from robotdesc.expansion.install_layout import source_of_installed
 from robotdesc.expansion.packages import split_package_uri
@@ -41,6 +42,12 @@ if TYPE_CHECKING:
         childNodes: list[_Linked]
 
         def removeChild(self, oldChild: _Linked) -> object: ...
+
+    class _Attributed(Protocol):
+        """An element's attribute tables (minidom's, not in its stubs)."""
+
+        _attrs: dict[str, Attr] | None
+        _attrsNS: dict[tuple[str | None, str], Attr] | None
 
 _ELEMENT = xml.dom.Node.ELEMENT_NODE
 
@@ -254,6 +261,56 @@ def plain_text_first(eval_text: Callable[[str, Table], object]) -> Callable[[str
     return evaluate
 
 
+def fast_clone(original: Callable[[Node, bool, Document], Node]
+               ) -> Callable[[Node, bool, Document], Node]:
+    """minidom's `_clone_node` (what `cloneNode` calls: xacro copies a macro's body at each
+    call) for elements, texts and comments, without its per-attribute and per-child calls:
+    the same nodes, attributes (same order, names, namespaces, `specified`) and links. Other
+    nodes, user data and an element whose attributes would collide go to `original`."""
+    element_node, text_node, comment_node = Node.ELEMENT_NODE, Node.TEXT_NODE, Node.COMMENT_NODE
+
+    def clone(node: Node, deep: bool, document: Document) -> Node:
+        kind = node.nodeType
+        if hasattr(node, "_user_data"):
+            return original(node, deep, document)
+        if kind == text_node:
+            return document.createTextNode(cast(xml.dom.minidom.Text, node).data)
+        if kind == comment_node:
+            return document.createComment(cast(xml.dom.minidom.Comment, node).data)
+        if kind != element_node:
+            return original(node, deep, document)
+        source = cast(Element, node)
+        name = source.nodeName
+        copy = Element(name, source.namespaceURI, name.split(":", 1)[0] if ":" in name else None)
+        copy.ownerDocument = document
+        linked = cast("_Attributed", source)
+        if linked._attrs:
+            attrs: dict[str, Attr] = {}
+            attrs_ns: dict[tuple[str | None, str], Attr] = {}
+            for attr in linked._attrs.values():
+                namespace, qname = attr.namespaceURI, attr.nodeName
+                prefix, local = qname.split(":", 1) if ":" in qname else (None, qname)
+                if (namespace, local) in attrs_ns or attr.localName != local:
+                    return original(node, deep, document)
+                made = Attr(qname, namespace, local, prefix)
+                made.value = attr.value
+                made.ownerDocument = document
+                made.ownerElement = copy
+                made.specified = attr.specified
+                attrs[qname] = made
+                attrs_ns[(namespace, local)] = made
+            copied = cast("_Attributed", copy)
+            copied._attrs, copied._attrsNS = attrs, attrs_ns
+        if deep:
+            for child in source.childNodes:
+                made_child = clone(child, True, document)
+                _append_child(copy, made_child)
+                made_child.nextSibling = None
+        return copy
+
+    return clone
+
+
 #: The most expressions whose compiled code `compiling_once` keeps.
 MAX_COMPILED = 10_000
 
@@ -458,6 +515,7 @@ def install(state: ExpansionState, find_package: Callable[[str], str],
     xacro.eval_all = eval_all
     xacro.eval_text = plain_text_first(xacro.eval_text)
     xacro.compile = compiling_once(builtins.compile)  # a global of xacro's: its safe_eval's
+    xml.dom.minidom._clone_node = fast_clone(xml.dom.minidom._clone_node)  # type: ignore[attr-defined]
     xacro.handle_macro_call = handle_macro_call
     xacro.check_attrs = check_attrs
     xacro.abs_filename_spec = abs_filename_spec
