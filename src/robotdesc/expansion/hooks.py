@@ -162,29 +162,36 @@ class ExpansionState:
             self.error_src = (self.last_src, chain)
 
 
+class _TaggingBuilder(xml.dom.expatbuilder.ExpatBuilderNS):
+    """minidom's builder, tagging each element with its "FILE_INDEX:LINE" and refusing a
+    DOCTYPE (one class for every file: the file is the instance's)."""
+
+    _parser: xml.parsers.expat.XMLParserType  # set by ExpatBuilder (not in its stubs)
+
+    def __init__(self, path: str, index: int) -> None:
+        super().__init__()
+        self._path = path
+        self._index = f"{index}:"
+
+    def start_element_handler(self, name: str,  # noqa: D401 (expat callback)
+                              attributes: list[str]) -> None:
+        # the tag as one more attribute of the element expat read (`ordered_attributes`:
+        # name, value, ...), set by the builder as it sets the others: last, or in its
+        # place, with this value, when the file writes one itself
+        attributes += (PROVENANCE_ATTR, f"{self._index}{self._parser.CurrentLineNumber}")
+        super().start_element_handler(name, attributes)
+
+    def start_doctype_decl_handler(self, *args: object) -> NoReturn:
+        raise DoctypeRefused(self._path, self._parser.CurrentLineNumber,
+                             self._parser.CurrentColumnNumber + 1)
+
+    def entity_decl_handler(self, *args: object) -> NoReturn:
+        raise DoctypeRefused(self._path, self._parser.CurrentLineNumber,
+                             self._parser.CurrentColumnNumber + 1)
+
+
 def _make_builder(state: ExpansionState, path: str) -> xml.dom.expatbuilder.ExpatBuilderNS:
-    index = state.file_index(path)
-
-    class TaggingBuilder(xml.dom.expatbuilder.ExpatBuilderNS):
-        _parser: xml.parsers.expat.XMLParserType  # set by ExpatBuilder (not in its stubs)
-
-        def start_element_handler(self, name: str,  # noqa: D401 (expat callback)
-                                  attributes: list[str]) -> None:
-            # the tag as one more attribute of the element expat read (`ordered_attributes`:
-            # name, value, ...), set by the builder as it sets the others: last, or in its
-            # place, with this value, when the file writes one itself
-            attributes += (PROVENANCE_ATTR, f"{index}:{self._parser.CurrentLineNumber}")
-            super().start_element_handler(name, attributes)
-
-        def start_doctype_decl_handler(self, *args: object) -> NoReturn:
-            raise DoctypeRefused(path, self._parser.CurrentLineNumber,
-                                 self._parser.CurrentColumnNumber + 1)
-
-        def entity_decl_handler(self, *args: object) -> NoReturn:
-            raise DoctypeRefused(path, self._parser.CurrentLineNumber,
-                                 self._parser.CurrentColumnNumber + 1)
-
-    return TaggingBuilder()
+    return _TaggingBuilder(path, state.file_index(path))
 
 
 def splice_replace_node(node: Node, by: Node | list[Node] | None,
