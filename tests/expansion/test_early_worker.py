@@ -80,6 +80,26 @@ def test_no_early_worker_for_a_plain_urdf(launches, tmp_path, capsys) -> None:
     assert launches == []
 
 
+def test_each_target_of_a_lint_expands_in_a_worker_started_before_its_turn(
+        workspace, launches, monkeypatch, capsys) -> None:
+    robot = workspace / "robot_pkg" / "urdf" / "robot.urdf.xacro"
+    second = robot.with_name("second.urdf.xacro")
+    second.write_text(robot.read_text())
+    taken: list[bool] = []
+    real = launch.take_early
+
+    def taking():
+        proc = real()
+        taken.append(proc is not None)
+        return proc
+
+    monkeypatch.setattr(launch, "take_early", taking)
+    assert main(["lint", str(robot), str(second), "--no-cache", "--select", "J"]) in (0, 1)
+    assert taken == [True, True]  # each expansion found its worker running
+    assert len(launches) == 2
+    assert all(_gone(pid) for pid in launches) and not launch._EARLY
+
+
 def test_an_early_worker_no_expansion_takes_is_killed(workspace, launches) -> None:
     launch.start_early()
     launch.start_early()  # one at a time

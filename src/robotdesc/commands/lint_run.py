@@ -12,6 +12,7 @@ import sys
 from typing import TYPE_CHECKING
 
 from robotdesc.commands.lint_report import finish, known_inputs, split_outcomes
+from robotdesc.expansion import launch
 from robotdesc.linting.baseline import (
     apply_baseline,
     baseline_counts,
@@ -71,10 +72,15 @@ def _lint_with_progress(ns: argparse.Namespace, targets: list[LintTarget],
             return lint_targets(targets, args=args, expand_options=options, select=select,
                                 ignore=ignore, jobs=ns.jobs)
         outcomes: list[Outcome] = []
-        for number, target in enumerate(targets):
-            progress.update(number, detail=target.name())
-            outcomes += lint_targets([target], args=args, expand_options=options,
-                                     select=select, ignore=ignore, jobs=1)
+        # each xacro target's worker starts while the previous target is linted
+        launch.expect_more(sum(".xacro" in os.path.basename(t.path) for t in targets) - 1)
+        try:
+            for number, target in enumerate(targets):
+                progress.update(number, detail=target.name())
+                outcomes += lint_targets([target], args=args, expand_options=options,
+                                         select=select, ignore=ignore, jobs=1)
+        finally:
+            launch.expect_more(0)
         return outcomes
 
 

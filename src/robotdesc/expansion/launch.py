@@ -23,6 +23,8 @@ log = logging.getLogger(__name__)
 #: started it (a forked child never takes its parent's worker).
 _EARLY: list[tuple[int, subprocess.Popen[bytes]]] = []
 _EARLY_CLEANUP: list[bool] = []
+#: [the process that said so, how many more expansions follow the next one] (`expect_more`).
+_MORE: list[int] = []
 
 
 def _worker_pythonpath() -> str:
@@ -78,6 +80,21 @@ def start_early() -> None:
     if not _EARLY_CLEANUP:
         _EARLY_CLEANUP.append(True)
         atexit.register(drop_early)
+
+
+def expect_more(count: int) -> None:
+    """Say that `count` more expansions follow the next one in this process (a lint of
+    several xacro targets one after the other): each expansion that ends then starts the
+    next one's worker (`start_next`), whose start-up runs beside the lint of the previous."""
+    _MORE[:] = [os.getpid(), count]
+
+
+def start_next() -> None:
+    """After an expansion: start the next one's worker now when `expect_more` said one
+    follows (the worker of a target whose result turns out cached is killed at the end)."""
+    if _MORE and _MORE[0] == os.getpid() and _MORE[1] > 0:
+        _MORE[1] -= 1
+        start_early()
 
 
 def take_early() -> subprocess.Popen[bytes] | None:

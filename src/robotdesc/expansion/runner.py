@@ -106,6 +106,7 @@ def run_worker(path: Path, args: dict[str, str], resolver: PackageResolverConfig
             on_start()
         exchanged = exchange(proc, json.dumps(job).encode(), limits.timeout_s,
                              answer_cap(limits.max_output_bytes))
+    launch.start_next()
     if exchanged.timed_out:
         raise errors.LimitExceeded(
             f"expansion took longer than {limits.timeout_s:g} s and was stopped (a long-running "
