@@ -8,6 +8,7 @@ import sys
 
 import pytest
 
+from robotdesc.expansion import exchange as exchange_module
 from robotdesc.expansion.exchange import _ANSWER_PIPE_BYTES, exchange
 
 WRITER = ("import sys; data = sys.stdin.buffer.read(); "
@@ -39,3 +40,15 @@ def test_the_answer_pipe_is_widened_where_linux_allows() -> None:
         assert fcntl.fcntl(proc.stdout.fileno(), fcntl.F_GETPIPE_SZ) >= _ANSWER_PIPE_BYTES
     finally:
         proc.communicate()
+
+
+def test_the_switch_interval_comes_back_whatever_order_exchanges_end_in():
+    before = sys.getswitchinterval()
+    first, second = exchange_module._short_switch_interval(), exchange_module._short_switch_interval()
+    first.__enter__()
+    second.__enter__()
+    assert sys.getswitchinterval() == min(before, exchange_module._SWITCH_INTERVAL_S)
+    first.__exit__(None, None, None)
+    assert sys.getswitchinterval() == min(before, exchange_module._SWITCH_INTERVAL_S)
+    second.__exit__(None, None, None)
+    assert sys.getswitchinterval() == before

@@ -78,12 +78,32 @@ def exchange(proc: subprocess.Popen[bytes], job: bytes, timeout_s: float,
         answer_cap: the most bytes of stdout kept before the worker is killed.
     """
     assert proc.stdin is not None and proc.stdout is not None and proc.stderr is not None
-    switch = sys.getswitchinterval()
-    sys.setswitchinterval(min(switch, _SWITCH_INTERVAL_S))
-    try:
+    with _short_switch_interval():
         return _exchange(proc, job, timeout_s, answer_cap)
+
+
+#: [the interval to restore, how many exchanges run] while any runs (threads of a server).
+_SWITCH_STATE: list[float] = []
+_SWITCH_LOCK = threading.Lock()
+
+
+@contextlib.contextmanager
+def _short_switch_interval() -> Iterator[None]:
+    """`_SWITCH_INTERVAL_S` while at least one exchange of this process runs; the interval
+    before the first one afterwards, whatever the order in which several end."""
+    with _SWITCH_LOCK:
+        if not _SWITCH_STATE:
+            _SWITCH_STATE[:] = [sys.getswitchinterval(), 0]
+            sys.setswitchinterval(min(_SWITCH_STATE[0], _SWITCH_INTERVAL_S))
+        _SWITCH_STATE[1] += 1
+    try:
+        yield
     finally:
-        sys.setswitchinterval(switch)
+        with _SWITCH_LOCK:
+            _SWITCH_STATE[1] -= 1
+            if not _SWITCH_STATE[1]:
+                sys.setswitchinterval(_SWITCH_STATE[0])
+                _SWITCH_STATE.clear()
 
 
 def _exchange(proc: subprocess.Popen[bytes], job: bytes, timeout_s: float,
