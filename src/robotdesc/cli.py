@@ -51,6 +51,7 @@ def _expands_first(words: list[str]) -> bool:
     run beside this process's own (`expansion.launch.start_early`). A guess from the words
     only: a wrong one costs an idle process, killed when the command ends."""
     return words[:1] in (["lint"], ["expand"]) and "--no-cache" in words \
+        and not any(word.startswith("--scheduler") for word in words) \
         and any(".xacro" in word for word in words[1:] if not word.startswith("-"))
 
 
