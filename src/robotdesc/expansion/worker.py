@@ -276,6 +276,9 @@ def main(parent_pid: int | None = None) -> None:
     """
     if parent_pid is not None:
         confine.die_with_parent(parent_pid)
+    # what confining needs (libseccomp, found by two `ldconfig` runs) before the job arrives:
+    # a worker started early waits for it (`robotdesc.expansion.launch`)
+    confine.probe()
     job: _Job = json.loads(sys.stdin.read())
     sandbox.apply_limits(job["memory_mb"], job["cpu_seconds"])
     guard = sandbox.Guard(safe=not job["trusted"], code_roots=confine.code_roots())
