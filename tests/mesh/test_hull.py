@@ -105,6 +105,18 @@ def test_coplanar_heavy_and_duplicate_points_match_qhull() -> None:
     _assert_like_qhull(soup)  # a soup: every corner six times
 
 
+@pytest.mark.parametrize("seed", range(8))
+def test_float32_noise_on_flat_sides_stays_convex(seed: int) -> None:
+    """A box's sides as CAD exports them: grid points in float32, some off their plane by a
+    float32 step, so that rows of nearly collinear points on the rims make cone faces that
+    are slivers; the hull must not fold back over a face it is level with (seen on a
+    Clearpath mesh: a fold 3e-8 deep)."""
+    rng = np.random.default_rng(seed)
+    box = _box_surface_grid((1.0, 0.7, 0.3), 9) - 0.4
+    box = box + rng.choice([0.0, 0.0, 3e-8, -3e-8], size=box.shape)
+    _assert_like_qhull(box.astype(np.float32).astype(np.float64))
+
+
 @pytest.mark.parametrize("scale, offset", [(1e-6, 0.0), (1e-6, 1.0), (1e4, 0.0), (1e3, 1e5)])
 def test_tiny_and_huge_coordinates(scale: float, offset: float) -> None:
     rng = np.random.default_rng(5)

@@ -106,6 +106,20 @@ def _tetrahedron(points: np.ndarray, tolerance: float) -> np.ndarray | None:
     return np.array([[a, b, c], [a, d, b], [b, d, c], [c, d, a]], dtype=np.int64)
 
 
+def _normals(corners: np.ndarray) -> np.ndarray:
+    """Normals (not unit) of triangles (k, 3, 3), each the cross product of the two edges
+    at its largest angle (opposite its longest edge): the most precise of the three for a
+    sliver, whose other two edges are nearly parallel."""
+    edges = corners[:, _NEXT] - corners  # edge i: from corner i to corner i + 1
+    longest = np.einsum("kij,kij->ki", edges, edges).argmax(axis=1)
+    apex = (longest + 2) % 3  # the corner opposite the longest edge
+    rows = np.arange(len(corners))
+    after = edges[rows, apex]  # apex -> the next corner
+    before = edges[rows, (apex + 2) % 3]  # the previous corner -> apex
+    normal: np.ndarray = np.cross(after, -before)  # = (next - apex) x (previous - apex)
+    return normal
+
+
 class _Quickhull:
     """The growing hull: faces in arrays (vertex indices, the neighbour across each edge,
     unit normal and offset of the plane, alive), and the points still outside it."""
@@ -164,7 +178,7 @@ class _Quickhull:
             self.offsets = np.concatenate([self.offsets, np.zeros(grow)])
             self.alive = np.concatenate([self.alive, np.zeros(grow, dtype=bool)])
         corners = self.points[triangles]
-        normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+        normal = _normals(corners)
         length = np.linalg.norm(normal, axis=1)
         usable = length > 0
         normal[usable] /= length[usable, None]
@@ -215,10 +229,11 @@ class _Quickhull:
         while len(front_c):
             cand_c = np.repeat(front_c, 3)
             cand_f = self.neighbours[front_f].ravel()
+            tail = self.vertices[front_f].ravel()
+            head = self.vertices[front_f][:, _NEXT].ravel()
             fresh = claim[cand_f] != rank[cand_c]  # not seen by this eye already
-            cand_c, cand_f = cand_c[fresh], cand_f[fresh]
-            above = (np.einsum("ij,ij->i", self.normals[cand_f], eyes[cand_c])
-                     - self.offsets[cand_f]) > self.tolerance
+            cand_c, cand_f, tail, head = cand_c[fresh], cand_f[fresh], tail[fresh], head[fresh]
+            above = self._sees(eyes[cand_c], cand_f, tail, head)
             near_c.append(cand_c[~above])
             near_f.append(cand_f[~above])
             cand_c, cand_f = cand_c[above], cand_f[above]
@@ -247,6 +262,26 @@ class _Quickhull:
         waits[border_c[best_seen[border_f] > rank[border_c]]] = True
         accepted: np.ndarray = ~waits
         return accepted, all_c, all_f
+
+    def _sees(self, eyes: np.ndarray, faces: np.ndarray, tail: np.ndarray, head: np.ndarray
+              ) -> np.ndarray:
+        """Whether each eye takes each face into its patch, reached over the face's edge
+        (head, tail): when the eye is above the face, or level with it (within the
+        tolerance) and the new face (tail, head, eye) would fold back over it (the face's
+        third corner above the new face: a sliver from an eye nearly on the edge's line,
+        which qhull avoids by merging the two)."""
+        height = np.einsum("ij,ij->i", self.normals[faces], eyes) - self.offsets[faces]
+        takes: np.ndarray = height > self.tolerance
+        level = np.flatnonzero(~takes & (height > -self.tolerance))
+        if len(level):
+            tail, head = tail[level], head[level]
+            corner = self.vertices[faces[level]].sum(axis=1) - tail - head
+            base = self.points[tail]
+            cone = _normals(np.stack([base, self.points[head], eyes[level]], axis=1))
+            length = np.linalg.norm(cone, axis=1)
+            rise = np.einsum("ij,ij->i", cone, self.points[corner] - base)
+            takes[level] = rise > self.tolerance * length
+        return takes
 
     def _replace(self, eye: np.ndarray, accepted: np.ndarray, seen_c: np.ndarray,
                  seen_f: np.ndarray) -> None:
