@@ -40,6 +40,12 @@ _DIRECTIONS = np.array([
      np.sqrt(1 - z * z) * np.sin(2.399963229728653 * i), z)
     for i, z in enumerate(np.linspace(1 - 1 / 24, 1 / 24, 24))])
 
+#: Steps of the walk over faces after which the eyes still walking wait for a later round
+#: (but the farthest): a round costs a few numpy calls per step for all eyes.
+_PATCH_STEPS = 3
+#: The most (eye, face) heights `_wide_patches` computes in a round.
+_AT_ONCE = 1 << 16
+
 #: Each face's edges: edge i runs from vertex i to vertex (i + 1) % 3.
 _NEXT = np.array([1, 2, 0])
 
@@ -106,6 +112,44 @@ def _tetrahedron(points: np.ndarray, tolerance: float) -> np.ndarray | None:
     return np.array([[a, b, c], [a, d, b], [b, d, c], [c, d, a]], dtype=np.int64)
 
 
+def _indices(mask: np.ndarray) -> np.ndarray:
+    """Where a boolean array is true (np.flatnonzero is a Python function)."""
+    found: np.ndarray = mask.nonzero()[0]
+    return found
+
+
+def _filled(size: int, value: int) -> np.ndarray:
+    """An int64 array of `size` copies of `value` (np.full is a Python function)."""
+    out = np.empty(size, dtype=np.int64)
+    out.fill(value)
+    return out
+
+
+def _without(dropped: np.ndarray, owners: list[np.ndarray], faces: list[np.ndarray]
+             ) -> tuple[list[np.ndarray], list[np.ndarray]]:
+    """(owner, face) pair lists without the pairs whose owner is `dropped`."""
+    keep = [~dropped[part] for part in owners]
+    return ([part[k] for part, k in zip(owners, keep)],
+            [part[k] for part, k in zip(faces, keep)])
+
+
+def _discs(count: int, owner: np.ndarray, corners: np.ndarray, rim_owner: np.ndarray,
+           n_points: int) -> np.ndarray:
+    """Whether each of `count` patches is a disc by its Euler characteristic: vertices -
+    edges + faces = 1, with edges = (3 faces + horizon edges) / 2.
+
+    Args:
+        owner: the patch of each face (f,); corners: the faces' vertex ids (f, 3);
+        rim_owner: the patch of each horizon edge; n_points: more than any vertex id.
+    """
+    faces = np.bincount(owner, minlength=count)
+    rim = np.bincount(rim_owner, minlength=count)
+    corner_keys = np.unique(owner.repeat(3) * n_points + corners.ravel())
+    vertices = np.bincount(corner_keys // n_points, minlength=count)
+    disc: np.ndarray = 2 * vertices - (3 * faces + rim) + 2 * faces == 2
+    return disc
+
+
 def _normals(corners: np.ndarray) -> np.ndarray:
     """Normals (not unit) of triangles (k, 3, 3), each the cross product of the two edges
     at its largest angle (opposite its longest edge): the most precise of the three for a
@@ -116,8 +160,18 @@ def _normals(corners: np.ndarray) -> np.ndarray:
     rows = np.arange(len(corners))
     after = edges[rows, apex]  # apex -> the next corner
     before = edges[rows, (apex + 2) % 3]  # the previous corner -> apex
-    normal: np.ndarray = np.cross(after, -before)  # = (next - apex) x (previous - apex)
-    return normal
+    return _cross(after, -before)  # = (next - apex) x (previous - apex)
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Row-wise cross products of (k, 3) arrays (np.cross costs ~20 Python calls)."""
+    ax, ay, az = a[:, 0], a[:, 1], a[:, 2]
+    bx, by, bz = b[:, 0], b[:, 1], b[:, 2]
+    out = np.empty(a.shape)
+    out[:, 0] = ay * bz - az * by
+    out[:, 1] = az * bx - ax * bz
+    out[:, 2] = ax * by - ay * bx
+    return out
 
 
 class _Quickhull:
@@ -136,6 +190,7 @@ class _Quickhull:
         self.alive = np.zeros(capacity, dtype=bool)
         self.count = 0
         self.dropped = 0
+        self.walk_only = np.zeros(len(points), dtype=bool)  # eyes whose patch must be walked
         self._add(simplex)
         # each face's edge (u, v) is crossed into the face that has (v, u)
         edges = {(int(f[i]), int(f[(i + 1) % 3])): (n, i) for n, f in enumerate(simplex)
@@ -147,7 +202,7 @@ class _Quickhull:
     def assign(self, candidates: np.ndarray) -> None:
         """Make `candidates` (point indices) the points outside the hull: each goes to the
         face it is farthest above, or is dropped when above none."""
-        faces = np.flatnonzero(self.alive[:self.count])
+        faces = _indices(self.alive[:self.count])
         heights = (np.einsum("ij,kj->ik", self.points[candidates], self.normals[faces])
                    - self.offsets[faces])
         best = heights.argmax(axis=1)
@@ -179,7 +234,7 @@ class _Quickhull:
             self.alive = np.concatenate([self.alive, np.zeros(grow, dtype=bool)])
         corners = self.points[triangles]
         normal = _normals(corners)
-        length = np.linalg.norm(normal, axis=1)
+        length = np.sqrt(np.einsum("ij,ij->i", normal, normal))
         usable = length > 0
         normal[usable] /= length[usable, None]
         normal[~usable] = 0.0  # a degenerate sliver: nothing is ever above it
@@ -196,38 +251,43 @@ class _Quickhull:
         farthest = np.full(self.count, -np.inf)
         np.maximum.at(farthest, self.owner, self.height)
         lead = self.height == farthest[self.owner]
-        eye_of = np.full(self.count, -1, dtype=np.int64)
+        eye_of = _filled(self.count, -1)
         eye_of[self.owner[lead]] = self.outside[lead]  # one per face (the last of any tie)
-        start_face = np.flatnonzero(eye_of >= 0)
+        start_face = _indices(eye_of >= 0)
         eye = eye_of[start_face]
         rank = np.empty(len(eye), dtype=np.int64)
         rank[np.argsort(farthest[start_face], kind="stable")] = np.arange(len(eye))
-        accepted, seen_c, seen_f = self._patches(start_face, eye, rank)
+        accepted, seen_c, seen_f, at_once = self._patches(start_face, eye, rank)
         keep = accepted[seen_c]
-        self._replace(eye, accepted, seen_c[keep], seen_f[keep])
+        self._replace(eye, accepted, seen_c[keep], seen_f[keep], at_once)
 
     def _patches(self, start_face: np.ndarray, eye: np.ndarray, rank: np.ndarray
-                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Which eyes go in this round, and the (eye, face) pairs of the faces each sees.
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Which eyes go in this round, the (eye, face) pairs of the faces each sees, and
+        which eyes' patches were found at once rather than by a walk.
 
-        Each eye's patch grows from its own face over neighbours while the eye is above
-        them, for all eyes at once. An eye waits when a farther eye (higher `rank`) sees a
-        face it sees or borders, or borders a face it sees (replacing both patches at once
-        would cut a horizon edge from both sides); a face keeps the rank of the farthest
-        eye that saw it, and an eye stops growing as soon as it is outranked.
+        Each eye's patch grows from its own face over neighbours while the eye sees them
+        (`_sees`), for all eyes at once. An eye waits when a farther eye (higher `rank`)
+        sees a face it sees or borders, or borders a face it sees (replacing both patches
+        at once would cut a horizon edge from both sides); a face keeps the rank of the
+        farthest eye that saw it, and an eye stops walking as soon as it is outranked. The
+        few eyes still walking after `_PATCH_STEPS` steps (wide patches, long strips of
+        faces) take every face they are above at once (`_wide_patches`).
         """
         eyes = self.points[eye]
-        claim = np.full(self.count, -1, dtype=np.int64)
+        claim = _filled(self.count, -1)
         claim[start_face] = rank
         waits = np.zeros(len(eye), dtype=bool)
+        at_once = np.zeros(len(eye), dtype=bool)
         seen_c = [np.arange(len(eye))]
         seen_f = [start_face]
         near_c: list[np.ndarray] = []
         near_f: list[np.ndarray] = []
         front_c, front_f = seen_c[0], start_face
-        slot = np.full(self.count, -1, dtype=np.int64)
+        slot = _filled(self.count, -1)
+        steps = 0
         while len(front_c):
-            cand_c = np.repeat(front_c, 3)
+            cand_c = front_c.repeat(3)
             cand_f = self.neighbours[front_f].ravel()
             tail = self.vertices[front_f].ravel()
             head = self.vertices[front_f][:, _NEXT].ravel()
@@ -236,6 +296,7 @@ class _Quickhull:
             above = self._sees(eyes[cand_c], cand_f, tail, head)
             near_c.append(cand_c[~above])
             near_f.append(cand_f[~above])
+            waits[near_c[-1][claim[near_f[-1]] > rank[near_c[-1]]]] = True
             cand_c, cand_f = cand_c[above], cand_f[above]
             waits[cand_c[claim[cand_f] > rank[cand_c]]] = True
             np.maximum.at(claim, cand_f, rank[cand_c])
@@ -248,20 +309,63 @@ class _Quickhull:
             front_c, front_f = cand_c[first], cand_f[first]
             front = ~waits[front_c]
             front_c, front_f = front_c[front], front_f[front]
+            steps += 1
+            if steps == _PATCH_STEPS and len(front_c):
+                wide = np.unique(front_c)
+                wide = wide[~self.walk_only[eye[wide]]]
+                if len(wide) and len(wide) * self.count <= _AT_ONCE:
+                    at_once[wide] = True
+                    front_c, front_f = front_c[~at_once[front_c]], front_f[~at_once[front_c]]
+                    seen_c, seen_f = _without(at_once, seen_c, seen_f)
+                    near_c, near_f = _without(at_once, near_c, near_f)
+                    (wide_c, wide_f), (rim_c, rim_f) = self._wide_patches(
+                        wide, eyes[wide], start_face[wide])
+                    seen_c.append(wide_c)
+                    seen_f.append(wide_f)
+                    near_c.append(rim_c)
+                    near_f.append(rim_f)
+        # an eye that goes has each face once (an eye meets a face again only where a
+        # farther one took it, and then waits)
         all_c, all_f = np.concatenate(seen_c), np.concatenate(seen_f)
-        unique = np.zeros(len(all_c), dtype=bool)  # one pair per (eye, face)
-        key = all_c * self.count + all_f
-        unique[np.unique(key, return_index=True)[1]] = True
-        all_c, all_f = all_c[unique], all_f[unique]
-        border_c, border_f = np.concatenate(near_c), np.concatenate(near_f)
-        best_seen = np.full(self.count, -1, dtype=np.int64)
+        border_c = np.concatenate(near_c) if near_c else np.zeros(0, dtype=np.int64)
+        border_f = np.concatenate(near_f) if near_f else np.zeros(0, dtype=np.int64)
+        best_seen = _filled(self.count, -1)
         np.maximum.at(best_seen, all_f, rank[all_c])
         best_touch = best_seen.copy()
         np.maximum.at(best_touch, border_f, rank[border_c])
         waits[all_c[best_touch[all_f] > rank[all_c]]] = True
         waits[border_c[best_seen[border_f] > rank[border_c]]] = True
         accepted: np.ndarray = ~waits
-        return accepted, all_c, all_f
+        return accepted, all_c, all_f, at_once
+
+    def _wide_patches(self, wide: np.ndarray, eyes: np.ndarray, start_face: np.ndarray
+                      ) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+        """The patches of `wide` eyes (their ids; positions (k, 3); own faces) from every
+        alive face at once: the faces each is above, with those it is level with across an
+        edge of them where the new face would fold back (`_sees`, one ring); and the pairs
+        of the faces bordering each patch. A patch that is not one disc (rounding on nearly
+        coplanar faces) is caught by `_replace`."""
+        alive = _indices(self.alive[:self.count])
+        heights = (np.einsum("ij,kj->ik", eyes, self.normals[alive])
+                   - self.offsets[alive])
+        inside = np.zeros((len(wide), self.count), dtype=bool)
+        row, column = np.nonzero(heights > self.tolerance)
+        inside[row, alive[column]] = True
+        inside[np.arange(len(wide)), start_face] = True
+        row, face = np.nonzero(inside)
+        rows = row.repeat(3)
+        across = self.neighbours[face].ravel()
+        out = ~inside[rows, across]
+        rows, across = rows[out], across[out]
+        tail = self.vertices[face].ravel()[out]
+        head = self.vertices[face][:, _NEXT].ravel()[out]
+        folds = self._sees(eyes[rows], across, tail, head)
+        inside[rows[folds], across[folds]] = True
+        row, face = np.nonzero(inside)
+        rows = row.repeat(3)
+        across = self.neighbours[face].ravel()
+        rim = ~inside[rows, across]
+        return (wide[row], face), (wide[rows[rim]], across[rim])
 
     def _sees(self, eyes: np.ndarray, faces: np.ndarray, tail: np.ndarray, head: np.ndarray
               ) -> np.ndarray:
@@ -272,27 +376,32 @@ class _Quickhull:
         which qhull avoids by merging the two)."""
         height = np.einsum("ij,ij->i", self.normals[faces], eyes) - self.offsets[faces]
         takes: np.ndarray = height > self.tolerance
-        level = np.flatnonzero(~takes & (height > -self.tolerance))
+        level = _indices(~takes & (height > -self.tolerance))
         if len(level):
             tail, head = tail[level], head[level]
             corner = self.vertices[faces[level]].sum(axis=1) - tail - head
             base = self.points[tail]
             cone = _normals(np.stack([base, self.points[head], eyes[level]], axis=1))
-            length = np.linalg.norm(cone, axis=1)
+            length = np.sqrt(np.einsum("ij,ij->i", cone, cone))
             rise = np.einsum("ij,ij->i", cone, self.points[corner] - base)
             takes[level] = rise > self.tolerance * length
         return takes
 
     def _replace(self, eye: np.ndarray, accepted: np.ndarray, seen_c: np.ndarray,
-                 seen_f: np.ndarray) -> None:
+                 seen_f: np.ndarray, at_once: np.ndarray) -> None:
         """Replace each accepted eye's patch by the cone from its horizon to the eye, and
-        hand the patch's outside points to the cone's faces."""
+        hand the patch's outside points to the cone's faces.
+
+        A patch must be one disc (its horizon one loop through distinct vertices, and
+        vertices - edges + faces = 1); rounding on nearly coplanar faces can make another
+        shape. Such an eye walks its patch next time if it was found at once, else it is
+        dropped (counted in `dropped`)."""
         n_points = len(self.points)
         gone = np.zeros(self.count, dtype=bool)
         gone[seen_f] = True
-        face = np.repeat(seen_f, 3)
+        face = seen_f.repeat(3)
         edge = np.tile(np.arange(3), len(seen_f))
-        cone = np.repeat(seen_c, 3)
+        cone = seen_c.repeat(3)
         across = self.neighbours[face, edge]
         rim = ~gone[across]
         face, edge, cone, across = face[rim], edge[rim], cone[rim], across[rim]
@@ -307,8 +416,11 @@ class _Quickhull:
         broken = np.zeros(len(eye), dtype=bool)
         broken[cone[key[at] != next_key]] = True
         broken[cone[1:][key[1:] == key[:-1]]] = True  # the horizon runs through a vertex twice
-        if broken.any():  # rounding made a patch that is not a disc: skip its eye for good
-            self.dropped += int((broken & accepted).sum())
+        broken |= ~_discs(len(eye), seen_c, self.vertices[seen_f], cone, n_points)
+        broken &= accepted
+        if broken.any():
+            self.walk_only[eye[broken & at_once]] = True
+            self.dropped += int((broken & ~at_once).sum())
             accepted = accepted & ~broken
             keep = ~broken[cone]
             face, cone, across, tail, head, key = (
@@ -324,7 +436,7 @@ class _Quickhull:
         back = np.argmax(self.neighbours[across] == face[:, None], axis=1)
         self.neighbours[across, back] = ids
         self.alive[:len(gone)][gone] = False
-        self._reassign(eye, accepted | broken, gone, seen_c, seen_f, cone, ids)
+        self._reassign(eye, accepted | (broken & ~at_once), gone, seen_c, seen_f, cone, ids)
 
     def _reassign(self, eye: np.ndarray, done: np.ndarray, gone: np.ndarray,
                   seen_c: np.ndarray, seen_f: np.ndarray, cone: np.ndarray,
@@ -336,21 +448,21 @@ class _Quickhull:
         stays = ~gone[self.owner] & ~is_eye[self.outside]
         moving = gone[self.owner] & ~is_eye[self.outside]
         points = self.outside[moving]
-        owner_cone = np.full(len(gone), -1, dtype=np.int64)
+        owner_cone = _filled(len(gone), -1)
         owner_cone[seen_f[gone[seen_f]]] = seen_c[gone[seen_f]]
         which = owner_cone[self.owner[moving]]
         first = np.searchsorted(cone, np.arange(len(eye)))
         sizes = np.searchsorted(cone, np.arange(len(eye)), side="right") - first
         counts = sizes[which]
-        pair_point = np.repeat(points, counts)
+        pair_point = points.repeat(counts)
         step = np.arange(int(counts.sum())) - np.repeat(np.cumsum(counts) - counts, counts)
-        pair_face = ids[np.repeat(first[which], counts) + step]
+        pair_face = ids[first[which].repeat(counts) + step]
         heights = (np.einsum("ij,ij->i", self.normals[pair_face], self.points[pair_point])
                    - self.offsets[pair_face])
         if len(points):  # the pairs of a point are consecutive: the highest of each run
             runs = np.cumsum(counts) - counts
             highest = np.maximum.reduceat(heights, runs)
-            top = np.flatnonzero(heights == np.repeat(highest, counts))
+            top = _indices(heights == highest.repeat(counts))
             best = top[np.searchsorted(top, runs)]  # the first top pair of each point
             best = best[highest > self.tolerance]
         else:
