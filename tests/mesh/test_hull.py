@@ -126,6 +126,22 @@ def test_tiny_and_huge_coordinates(scale: float, offset: float) -> None:
         _assert_like_qhull(points * scale + offset, relative=1e-8)
 
 
+def test_blocks_of_points_give_the_same_hull(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Steps that touch every point go a block at a time (meshes of millions of points);
+    tiny blocks give the same hull."""
+    import robotdesc.mesh.hull as hull
+
+    rng = np.random.default_rng(2)
+    cloud = np.concatenate([rng.normal(size=(1500, 3)), _box_surface_grid((2.0, 1.0, 1.0), 9)])
+    expected = convex_hull_faces(cloud)
+    monkeypatch.setattr(hull, "_BLOCK", 7)
+    found = convex_hull_faces(cloud)
+    assert expected is not None and found is not None
+    assert _properties(cloud, found).volume == pytest.approx(
+        _properties(cloud, expected).volume, rel=1e-12)
+    _assert_like_qhull(cloud)
+
+
 def test_no_volume_no_hull() -> None:
     rng = np.random.default_rng(3)
     plane = np.column_stack([rng.uniform(0, 1, (100, 2)), np.full(100, 0.3)])

@@ -22,6 +22,7 @@ Units: whatever the points are in (metres for meshes); the tolerance scales with
 from __future__ import annotations
 
 import logging
+from collections.abc import Callable
 
 import numpy as np
 
@@ -45,6 +46,9 @@ _DIRECTIONS = np.array([
 _PATCH_STEPS = 3
 #: The most (eye, face) heights `_wide_patches` computes in a round.
 _AT_ONCE = 1 << 16
+
+#: Rows per block where a step touches every point (bounded temporaries).
+_BLOCK = 1 << 16
 
 #: Each face's edges: edge i runs from vertex i to vertex (i + 1) % 3.
 _NEXT = np.array([1, 2, 0])
@@ -81,8 +85,26 @@ def convex_hull_faces(points: np.ndarray) -> np.ndarray | None:
 
 def _extreme_points(points: np.ndarray) -> np.ndarray:
     """The indices of the points farthest along each of `_DIRECTIONS`, both ways."""
-    along = np.einsum("ij,kj->ik", points, _DIRECTIONS)  # no BLAS: its threads spin
-    return np.unique(np.concatenate([along.argmin(axis=0), along.argmax(axis=0)]))
+    found = []
+    for start in range(0, len(points), _BLOCK):  # a block's extremes, then the best of them
+        along = np.einsum("ij,kj->ik", points[start:start + _BLOCK], _DIRECTIONS)
+        found += [along.argmin(axis=0) + start, along.argmax(axis=0) + start]
+    candidates = np.unique(np.concatenate(found))
+    along = np.einsum("ij,kj->ik", points[candidates], _DIRECTIONS)  # no BLAS: threads spin
+    return np.unique(candidates[np.concatenate([along.argmin(axis=0), along.argmax(axis=0)])])
+
+
+def _farthest(points: np.ndarray, measure: Callable[[np.ndarray], np.ndarray]
+              ) -> tuple[int, float]:
+    """The index of the point with the largest `measure` (of a block of rows) and that
+    value, a block at a time (bounded temporaries for meshes of millions of points)."""
+    best, value = 0, -np.inf
+    for start in range(0, len(points), _BLOCK):
+        values = measure(points[start:start + _BLOCK])
+        index = int(values.argmax())
+        if values[index] > value:
+            best, value = start + index, float(values[index])
+    return best, value
 
 
 def _tetrahedron(points: np.ndarray, tolerance: float) -> np.ndarray | None:
@@ -93,21 +115,28 @@ def _tetrahedron(points: np.ndarray, tolerance: float) -> np.ndarray | None:
     squared = ((ends[:, None, :] - ends[None, :, :]) ** 2).sum(axis=2)
     i, j = np.unravel_index(int(squared.argmax()), squared.shape)
     a, b = int(extremes[i]), int(extremes[j])
-    axis = points[b] - points[a]
+    origin = points[a]
+    axis = points[b] - origin
     length = float(np.linalg.norm(axis))
     if not length > tolerance:
         return None
-    from_line = np.linalg.norm(np.cross(points - points[a], axis / length), axis=1)
-    c = int(from_line.argmax())
-    if not from_line[c] > tolerance:
+    unit = np.tile(axis / length, (min(len(points), _BLOCK), 1))
+
+    def from_line(block: np.ndarray) -> np.ndarray:
+        away = _cross(block - origin, unit[:len(block)])
+        distance: np.ndarray = np.einsum("ij,ij->i", away, away)
+        return distance
+
+    c, squared_distance = _farthest(points, from_line)
+    if not np.sqrt(squared_distance) > tolerance:
         return None
-    normal = np.cross(axis, points[c] - points[a])
+    normal = _cross(axis[None, :], (points[c] - origin)[None, :])[0]
     normal /= np.linalg.norm(normal)
-    height = np.einsum("ij,j->i", points - points[a], normal)
-    d = int(np.abs(height).argmax())
-    if not abs(height[d]) > tolerance:
+    d, _ = _farthest(points, lambda block: np.abs(np.einsum("ij,j->i", block - origin, normal)))
+    height = float(np.dot(points[d] - origin, normal))
+    if not abs(height) > tolerance:
         return None
-    if height[d] > 0:  # d above (a, b, c): wind the base the other way
+    if height > 0:  # d above (a, b, c): wind the base the other way
         b, c = c, b
     return np.array([[a, b, c], [a, d, b], [b, d, c], [c, d, a]], dtype=np.int64)
 
@@ -203,14 +232,21 @@ class _Quickhull:
         """Make `candidates` (point indices) the points outside the hull: each goes to the
         face it is farthest above, or is dropped when above none."""
         faces = _indices(self.alive[:self.count])
-        heights = (np.einsum("ij,kj->ik", self.points[candidates], self.normals[faces])
-                   - self.offsets[faces])
-        best = heights.argmax(axis=1)
-        height = heights[np.arange(len(candidates)), best]
-        outside = height > self.tolerance
-        self.outside = candidates[outside]
-        self.owner = faces[best[outside]]
-        self.height = height[outside]
+        step = max(1, _BLOCK * 64 // len(faces))  # at most 4M heights at a time
+        outside, owner, height = [], [], []
+        for start in range(0, len(candidates), step):
+            block = candidates[start:start + step]
+            heights = (np.einsum("ij,kj->ik", self.points[block], self.normals[faces])
+                       - self.offsets[faces])
+            best = heights.argmax(axis=1)
+            highest = heights[np.arange(len(block)), best]
+            above = highest > self.tolerance
+            outside.append(block[above])
+            owner.append(faces[best[above]])
+            height.append(highest[above])
+        self.outside = np.concatenate(outside) if outside else candidates[:0]
+        self.owner = np.concatenate(owner) if owner else candidates[:0]
+        self.height = np.concatenate(height) if height else np.zeros(0)
 
     def run(self) -> np.ndarray:
         """Insert points until none is outside; the alive faces (m, 3)."""
@@ -454,19 +490,31 @@ class _Quickhull:
         first = np.searchsorted(cone, np.arange(len(eye)))
         sizes = np.searchsorted(cone, np.arange(len(eye)), side="right") - first
         counts = sizes[which]
+        found = [(self.outside[stays], self.owner[stays], self.height[stays])]
+        total = np.concatenate(([0], np.cumsum(counts)))
+        begin = 0
+        while begin < len(points):  # a block of points, at most 4M (point, face) pairs
+            end = max(int(np.searchsorted(total, total[begin] + _BLOCK * 64, side="right")) - 1,
+                      begin + 1)
+            found.append(self._highest(points[begin:end], first[which[begin:end]],
+                                       counts[begin:end], ids))
+            begin = end
+        self.outside = np.concatenate([part[0] for part in found])
+        self.owner = np.concatenate([part[1] for part in found])
+        self.height = np.concatenate([part[2] for part in found])
+
+    def _highest(self, points: np.ndarray, first: np.ndarray, counts: np.ndarray,
+                 ids: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """For points each with a run of faces (`ids[first:first + count]`), those above
+        one of them: (point, the face it is highest above, that height)."""
         pair_point = points.repeat(counts)
-        step = np.arange(int(counts.sum())) - np.repeat(np.cumsum(counts) - counts, counts)
-        pair_face = ids[first[which].repeat(counts) + step]
+        runs = np.cumsum(counts) - counts
+        step = np.arange(int(counts.sum())) - runs.repeat(counts)
+        pair_face = ids[first.repeat(counts) + step]
         heights = (np.einsum("ij,ij->i", self.normals[pair_face], self.points[pair_point])
                    - self.offsets[pair_face])
-        if len(points):  # the pairs of a point are consecutive: the highest of each run
-            runs = np.cumsum(counts) - counts
-            highest = np.maximum.reduceat(heights, runs)
-            top = _indices(heights == highest.repeat(counts))
-            best = top[np.searchsorted(top, runs)]  # the first top pair of each point
-            best = best[highest > self.tolerance]
-        else:
-            best = np.zeros(0, dtype=np.int64)
-        self.outside = np.concatenate([self.outside[stays], pair_point[best]])
-        self.owner = np.concatenate([self.owner[stays], pair_face[best]])
-        self.height = np.concatenate([self.height[stays], heights[best]])
+        highest = np.maximum.reduceat(heights, runs)  # a point's pairs are consecutive
+        top = _indices(heights == highest.repeat(counts))
+        best = top[np.searchsorted(top, runs)]  # the first top pair of each point
+        best = best[highest > self.tolerance]
+        return pair_point[best], pair_face[best], heights[best]
