@@ -295,20 +295,20 @@ class _Quickhull:
         rank[np.argsort(farthest[start_face], kind="stable")] = np.arange(len(eye))
         accepted, seen_c, seen_f, at_once = self._patches(start_face, eye, rank)
         keep = accepted[seen_c]
-        self._replace(eye, accepted, seen_c[keep], seen_f[keep], at_once)
+        self._replace(eye, rank, accepted, seen_c[keep], seen_f[keep], at_once)
 
     def _patches(self, start_face: np.ndarray, eye: np.ndarray, rank: np.ndarray
                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """Which eyes go in this round, the (eye, face) pairs of the faces each sees, and
-        which eyes' patches were found at once rather than by a walk.
+        """Which eyes may go in this round, the (eye, face) pairs of the faces each sees,
+        and which eyes' patches were found at once rather than by a walk.
 
         Each eye's patch grows from its own face over neighbours while the eye sees them
-        (`_sees`), for all eyes at once. An eye waits when a farther eye (higher `rank`)
-        sees a face it sees or borders, or borders a face it sees (replacing both patches
-        at once would cut a horizon edge from both sides); a face keeps the rank of the
-        farthest eye that saw it, and an eye stops walking as soon as it is outranked. The
-        few eyes still walking after `_PATCH_STEPS` steps (wide patches, long strips of
-        faces) take every face they are above at once (`_wide_patches`).
+        (`_sees`), for all eyes at once. Patches must not overlap: a face keeps the rank of
+        the farthest eye that saw it, and an eye that meets a face a farther eye (higher
+        `rank`) sees stops walking and waits for a later round. (Patches that only touch
+        go together when the edge between their cones is convex: `_replace`.) The few eyes
+        still walking after `_PATCH_STEPS` steps (wide patches, long strips of faces) take
+        every face they are above at once (`_wide_patches`).
         """
         eyes = self.points[eye]
         claim = _filled(self.count, -1)
@@ -317,8 +317,6 @@ class _Quickhull:
         at_once = np.zeros(len(eye), dtype=bool)
         seen_c = [np.arange(len(eye))]
         seen_f = [start_face]
-        near_c: list[np.ndarray] = []
-        near_f: list[np.ndarray] = []
         front_c, front_f = seen_c[0], start_face
         slot = _filled(self.count, -1)
         steps = 0
@@ -330,19 +328,16 @@ class _Quickhull:
             fresh = claim[cand_f] != rank[cand_c]  # not seen by this eye already
             cand_c, cand_f, tail, head = cand_c[fresh], cand_f[fresh], tail[fresh], head[fresh]
             above = self._sees(eyes[cand_c], cand_f, tail, head)
-            near_c.append(cand_c[~above])
-            near_f.append(cand_f[~above])
-            waits[near_c[-1][claim[near_f[-1]] > rank[near_c[-1]]]] = True
             cand_c, cand_f = cand_c[above], cand_f[above]
-            waits[cand_c[claim[cand_f] > rank[cand_c]]] = True
             np.maximum.at(claim, cand_f, rank[cand_c])
             mine = claim[cand_f] == rank[cand_c]
+            waits[cand_c[~mine]] = True  # a farther eye sees it (now or before)
             index = np.arange(len(cand_f))
             slot[cand_f[mine]] = index[mine]  # one pair per face and eye walks on
             first = mine & (slot[cand_f] == index)
-            seen_c.append(cand_c)
-            seen_f.append(cand_f)
             front_c, front_f = cand_c[first], cand_f[first]
+            seen_c.append(front_c)
+            seen_f.append(front_f)
             front = ~waits[front_c]
             front_c, front_f = front_c[front], front_f[front]
             steps += 1
@@ -352,43 +347,36 @@ class _Quickhull:
                 if len(wide) and len(wide) * self.count <= _AT_ONCE:
                     at_once[wide] = True
                     front_c, front_f = front_c[~at_once[front_c]], front_f[~at_once[front_c]]
-                    seen_c, seen_f = _without(at_once, seen_c, seen_f)
-                    near_c, near_f = _without(at_once, near_c, near_f)
-                    (wide_c, wide_f), (rim_c, rim_f) = self._wide_patches(
-                        wide, eyes[wide], start_face[wide])
+                    keep = [~at_once[part] for part in seen_c]
+                    seen_c = [part[k] for part, k in zip(seen_c, keep)]
+                    seen_f = [part[k] for part, k in zip(seen_f, keep)]
+                    wide_c, wide_f = self._wide_patches(wide, eyes[wide], start_face[wide])
                     seen_c.append(wide_c)
                     seen_f.append(wide_f)
-                    near_c.append(rim_c)
-                    near_f.append(rim_f)
-        # an eye that goes has each face once (an eye meets a face again only where a
-        # farther one took it, and then waits)
+        # each face once per eye: met again in a later step only where a farther eye took
+        # it (and then the eye waits), twice in a step only from two faces (one is kept)
         all_c, all_f = np.concatenate(seen_c), np.concatenate(seen_f)
-        border_c = np.concatenate(near_c) if near_c else np.zeros(0, dtype=np.int64)
-        border_f = np.concatenate(near_f) if near_f else np.zeros(0, dtype=np.int64)
         best_seen = _filled(self.count, -1)
         np.maximum.at(best_seen, all_f, rank[all_c])
-        best_touch = best_seen.copy()
-        np.maximum.at(best_touch, border_f, rank[border_c])
-        waits[all_c[best_touch[all_f] > rank[all_c]]] = True
-        waits[border_c[best_seen[border_f] > rank[border_c]]] = True
+        waits[all_c[best_seen[all_f] > rank[all_c]]] = True
         accepted: np.ndarray = ~waits
         return accepted, all_c, all_f, at_once
 
     def _wide_patches(self, wide: np.ndarray, eyes: np.ndarray, start_face: np.ndarray
-                      ) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+                      ) -> tuple[np.ndarray, np.ndarray]:
         """The patches of `wide` eyes (their ids; positions (k, 3); own faces) from every
-        alive face at once: the faces each is above, with those it is level with across an
-        edge of them where the new face would fold back (`_sees`, one ring); and the pairs
-        of the faces bordering each patch. A patch that is not one disc (rounding on nearly
-        coplanar faces) is caught by `_replace`."""
+        alive face at once, as (eye, face) pairs: the faces each is above, with those it is
+        level with across an edge of them where the new face would fold back (`_sees`, one
+        ring). A patch that is not one disc (rounding on nearly coplanar faces) is caught
+        by `_replace`."""
         alive = _indices(self.alive[:self.count])
         heights = (np.einsum("ij,kj->ik", eyes, self.normals[alive])
                    - self.offsets[alive])
         inside = np.zeros((len(wide), self.count), dtype=bool)
-        row, column = np.nonzero(heights > self.tolerance)
+        row, column = (heights > self.tolerance).nonzero()
         inside[row, alive[column]] = True
         inside[np.arange(len(wide)), start_face] = True
-        row, face = np.nonzero(inside)
+        row, face = inside.nonzero()
         rows = row.repeat(3)
         across = self.neighbours[face].ravel()
         out = ~inside[rows, across]
@@ -397,11 +385,8 @@ class _Quickhull:
         head = self.vertices[face][:, _NEXT].ravel()[out]
         folds = self._sees(eyes[rows], across, tail, head)
         inside[rows[folds], across[folds]] = True
-        row, face = np.nonzero(inside)
-        rows = row.repeat(3)
-        across = self.neighbours[face].ravel()
-        rim = ~inside[rows, across]
-        return (wide[row], face), (wide[rows[rim]], across[rim])
+        row, face = inside.nonzero()
+        return wide[row], face
 
     def _sees(self, eyes: np.ndarray, faces: np.ndarray, tail: np.ndarray, head: np.ndarray
               ) -> np.ndarray:
@@ -423,70 +408,92 @@ class _Quickhull:
             takes[level] = rise > self.tolerance * length
         return takes
 
-    def _replace(self, eye: np.ndarray, accepted: np.ndarray, seen_c: np.ndarray,
-                 seen_f: np.ndarray, at_once: np.ndarray) -> None:
+    def _replace(self, eye: np.ndarray, rank: np.ndarray, accepted: np.ndarray,
+                 seen_c: np.ndarray, seen_f: np.ndarray, at_once: np.ndarray) -> None:
         """Replace each accepted eye's patch by the cone from its horizon to the eye, and
         hand the patch's outside points to the cone's faces.
 
-        A patch must be one disc (its horizon one loop through distinct vertices, and
-        vertices - edges + faces = 1); rounding on nearly coplanar faces can make another
-        shape. Such an eye walks its patch next time if it was found at once, else it is
-        dropped (counted in `dropped`)."""
+        Two patches may share horizon edges; the two new faces over such an edge become
+        neighbours when the edge between them is convex (neither eye above the other's new
+        face), else the nearer eye waits. A patch must be one disc (its horizon one loop
+        through distinct vertices, and vertices - edges + faces = 1); rounding on nearly
+        coplanar faces can make another shape. Such an eye walks its patch next time if it
+        was found at once, else it is dropped (counted in `dropped`)."""
         n_points = len(self.points)
-        gone = np.zeros(self.count, dtype=bool)
-        gone[seen_f] = True
-        face = seen_f.repeat(3)
-        edge = np.tile(np.arange(3), len(seen_f))
-        cone = seen_c.repeat(3)
-        across = self.neighbours[face, edge]
-        rim = ~gone[across]
-        face, edge, cone, across = face[rim], edge[rim], cone[rim], across[rim]
-        tail = self.vertices[face, edge]
-        head = self.vertices[face, _NEXT[edge]]
-        key = cone * n_points + tail
-        order = np.argsort(key, kind="stable")
-        face, cone, across, tail, head, key = (
-            face[order], cone[order], across[order], tail[order], head[order], key[order])
-        next_key = cone * n_points + head
-        at = np.minimum(np.searchsorted(key, next_key), len(key) - 1)
+        accepted = accepted.copy()
         broken = np.zeros(len(eye), dtype=bool)
-        broken[cone[key[at] != next_key]] = True
-        broken[cone[1:][key[1:] == key[:-1]]] = True  # the horizon runs through a vertex twice
-        broken |= ~_discs(len(eye), seen_c, self.vertices[seen_f], cone, n_points)
-        broken &= accepted
-        if broken.any():
-            self.walk_only[eye[broken & at_once]] = True
-            self.dropped += int((broken & ~at_once).sum())
-            accepted = accepted & ~broken
-            keep = ~broken[cone]
-            face, cone, across, tail, head, key = (
-                face[keep], cone[keep], across[keep], tail[keep], head[keep], key[keep])
-            gone[:] = False
-            gone[seen_f[accepted[seen_c]]] = True
+        while True:
+            keep = accepted[seen_c]
+            seen_c, seen_f = seen_c[keep], seen_f[keep]
+            owner = _filled(self.count, -1)
+            owner[seen_f] = seen_c
+            face = seen_f.repeat(3)
+            edge = np.tile(np.arange(3), len(seen_f))
+            cone = seen_c.repeat(3)
+            across = self.neighbours[face, edge]
+            rim = owner[across] != cone
+            face, edge, cone, across = face[rim], edge[rim], cone[rim], across[rim]
+            other = owner[across]  # -1: the face across stays; else the eye replacing it
+            tail = self.vertices[face, edge]
+            head = self.vertices[face, _NEXT[edge]]
+            shared = _indices(other >= 0)
+            if len(shared):
+                mine, theirs = cone[shared], other[shared]
+                base = self.points[tail[shared]]
+                normal = _normals(np.stack([base, self.points[head[shared]],
+                                            self.points[eye[mine]]], axis=1))
+                length = np.sqrt(np.einsum("ij,ij->i", normal, normal))
+                rise = np.einsum("ij,ij->i", normal, self.points[eye[theirs]] - base)
+                reflex = rise > self.tolerance * length
+                if reflex.any():
+                    mine, theirs = mine[reflex], theirs[reflex]
+                    accepted[np.where(rank[mine] < rank[theirs], mine, theirs)] = False
+                    continue
+            key = cone * n_points + tail
+            order = np.argsort(key, kind="stable")
+            face, cone, across, other, tail, head, key = (
+                face[order], cone[order], across[order], other[order], tail[order],
+                head[order], key[order])
             next_key = cone * n_points + head
-            at = np.searchsorted(key, next_key)
+            at = np.minimum(np.searchsorted(key, next_key), len(key) - 1)
+            bad = np.zeros(len(eye), dtype=bool)
+            bad[cone[key[at] != next_key]] = True
+            bad[cone[1:][key[1:] == key[:-1]]] = True  # the horizon meets a vertex twice
+            bad |= ~_discs(len(eye), seen_c, self.vertices[seen_f], cone, n_points)
+            bad &= accepted
+            if bad.any():
+                broken |= bad
+                accepted &= ~bad
+                continue
+            break
+        self.walk_only[eye[broken & at_once]] = True
+        self.dropped += int((broken & ~at_once).sum())
         ids = self._add(np.stack([tail, head, eye[cone]], axis=1))
-        self.neighbours[ids, 0] = across
         self.neighbours[ids, 1] = ids[at]
         self.neighbours[ids[at], 2] = ids
-        back = np.argmax(self.neighbours[across] == face[:, None], axis=1)
-        self.neighbours[across, back] = ids
+        stays = other < 0
+        self.neighbours[ids[stays], 0] = across[stays]
+        back = np.argmax(self.neighbours[across[stays]] == face[stays, None], axis=1)
+        self.neighbours[across[stays], back] = ids[stays]
+        twin = np.searchsorted(key, other[~stays] * n_points + head[~stays])
+        self.neighbours[ids[~stays], 0] = ids[twin]  # the other cone's face, reversed
+        gone = owner >= 0
         self.alive[:len(gone)][gone] = False
-        self._reassign(eye, accepted | (broken & ~at_once), gone, seen_c, seen_f, cone, ids)
+        self._reassign(eye, accepted | (broken & ~at_once), owner, cone, ids)
 
-    def _reassign(self, eye: np.ndarray, done: np.ndarray, gone: np.ndarray,
-                  seen_c: np.ndarray, seen_f: np.ndarray, cone: np.ndarray,
-                  ids: np.ndarray) -> None:
-        """Points outside a replaced face go to the cone face they are farthest above, or
-        are inside now; inserted (and dropped) eyes leave the outside set."""
+    def _reassign(self, eye: np.ndarray, done: np.ndarray, owner: np.ndarray,
+                  cone: np.ndarray, ids: np.ndarray) -> None:
+        """Points outside a replaced face (`owner`: the eye that replaced each face, or -1)
+        go to the face of that eye's cone they are farthest above, or are inside now;
+        inserted (and dropped) eyes leave the outside set."""
         is_eye = np.zeros(len(self.points), dtype=bool)
         is_eye[eye[done]] = True
-        stays = ~gone[self.owner] & ~is_eye[self.outside]
-        moving = gone[self.owner] & ~is_eye[self.outside]
+        which = owner[self.owner]
+        moving = which >= 0
+        stays = ~moving & ~is_eye[self.outside]
+        moving &= ~is_eye[self.outside]
         points = self.outside[moving]
-        owner_cone = _filled(len(gone), -1)
-        owner_cone[seen_f[gone[seen_f]]] = seen_c[gone[seen_f]]
-        which = owner_cone[self.owner[moving]]
+        which = which[moving]
         first = np.searchsorted(cone, np.arange(len(eye)))
         sizes = np.searchsorted(cone, np.arange(len(eye)), side="right") - first
         counts = sizes[which]
