@@ -109,7 +109,7 @@ def test_close_pairs_without_a_grid_are_the_pairs_of_the_pairwise_comparison(mon
     are close to nothing; and no size imports scipy."""
     import sys
 
-    import robotdesc.mesh.health as health
+    from robotdesc.mesh import health
 
     rng = np.random.default_rng(7)
     spread = rng.uniform(-1.0, 1.0, (1500, 3))

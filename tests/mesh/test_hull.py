@@ -129,7 +129,7 @@ def test_tiny_and_huge_coordinates(scale: float, offset: float) -> None:
 def test_blocks_of_points_give_the_same_hull(monkeypatch: pytest.MonkeyPatch) -> None:
     """Steps that touch every point go a block at a time (meshes of millions of points);
     tiny blocks give the same hull."""
-    import robotdesc.mesh.hull as hull
+    from robotdesc.mesh import hull
 
     rng = np.random.default_rng(2)
     cloud = np.concatenate([rng.normal(size=(1500, 3)), _box_surface_grid((2.0, 1.0, 1.0), 9)])

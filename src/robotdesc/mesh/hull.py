@@ -1,20 +1,26 @@
 """The convex hull of a 3-D point cloud with numpy alone (no qhull: importing scipy.spatial
-costs about 0.2 s in a fresh process, more than the hull of any mesh in the corpus).
+costs about 0.2 s of CPU in a fresh process, more than the hull of almost any mesh).
 
 Quickhull, inserting many points per round: every hull face with points outside it offers
-its farthest point; the faces each offered point sees (a connected patch, found by a breadth
--first walk done for all points at once) are replaced by a cone of triangles to the point.
-Points whose patches share or touch a face conflict; of two that conflict the farther one
-goes first (so a round always inserts the farthest point), the other waits for a later
-round. Points outside a replaced face are handed to the faces of its cone or dropped, as in
-quickhull; the first rounds, from a tetrahedron of extreme points, drop most points of a
-mesh, which is the usual pre-filter.
+its farthest point (its eye); the faces each eye sees (its patch: found by a breadth-first
+walk done for all eyes at once, or for the few wide ones by testing every face) are replaced
+by a cone of triangles from the patch's rim to the eye. Patches must not overlap: of two
+eyes that see a common face the farther one goes, the other waits for a later round (so a
+round always inserts the farthest eye). Patches that only touch go together, their cones
+joined along the common rim edge when it is convex, else the nearer eye waits. Points
+outside a replaced face are handed to the face of its cone they are farthest above, or are
+inside, as in quickhull. The first hull is that of the extreme points along 24 directions,
+which drops most of a mesh's points at once (the usual pre-filter).
 
-A point counts as outside a face only when it is more than a tolerance (a small multiple of
-the points' extent, `RELATIVE_TOLERANCE`) above its plane: coplanar and duplicate points
-never make faces, and a point set that is flat or collinear within it has no hull (None).
-Coplanar hull faces come out as any triangulation of them, wound outward (counter-clockwise
-seen from outside), which is all a volume integral needs.
+Robustness: a point is outside a face only when more than a tolerance (a small multiple of
+the points' extent, `RELATIVE_TOLERANCE`) above its plane, so coplanar and duplicate points
+never make faces, and a set that is flat or collinear within it has no hull (None). An eye
+level with a face next to its patch takes that face too when the new face over their edge
+would fold back over it (an eye nearly on the line of a rim edge, common on the float32
+flat sides of CAD meshes); a patch must be a disc. Normals come from each triangle's largest
+angle. Coplanar hull faces come out as any triangulation of them, wound outward
+(counter-clockwise seen from outside), which is all a volume integral needs. Steps that
+touch every point go a block at a time (bounded memory for millions of points).
 
 Units: whatever the points are in (metres for meshes); the tolerance scales with them.
 """
@@ -165,14 +171,6 @@ def _filled(size: int, value: int) -> np.ndarray:
     out = np.empty(size, dtype=np.int64)
     out.fill(value)
     return out
-
-
-def _without(dropped: np.ndarray, owners: list[np.ndarray], faces: list[np.ndarray]
-             ) -> tuple[list[np.ndarray], list[np.ndarray]]:
-    """(owner, face) pair lists without the pairs whose owner is `dropped`."""
-    keep = [~dropped[part] for part in owners]
-    return ([part[k] for part, k in zip(owners, keep)],
-            [part[k] for part, k in zip(faces, keep)])
 
 
 def _discs(count: int, owner: np.ndarray, corners: np.ndarray, rim_owner: np.ndarray,
