@@ -93,6 +93,14 @@ def test_random_clouds_match_qhull(seed: int) -> None:
     _assert_like_qhull(rng.normal(size=(40, 3)) * [5.0, 0.1, 1.0])  # thin, few points
 
 
+@pytest.mark.parametrize("seed", range(4))
+def test_a_thin_slab_matches_qhull(seed: int) -> None:
+    """Points 1e-8 as thick as wide: the tolerance must stay below the slab's own rounding
+    (1e-12 of the width lost up to 2e-6 of its volume)."""
+    rng = np.random.default_rng(seed)
+    _assert_like_qhull(rng.uniform(-1.0, 1.0, (3000, 3)) * [1.0, 1.0, 1e-8])
+
+
 def test_coplanar_heavy_and_duplicate_points_match_qhull() -> None:
     box = _box_surface_grid((1.0, 2.0, 3.0), 13)
     faces = convex_hull_faces(box)
