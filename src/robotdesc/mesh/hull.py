@@ -245,6 +245,9 @@ class _Quickhull:
         """Make `candidates` (point indices) the points outside the hull: each goes to the
         face it is farthest above, or is dropped when above none."""
         faces = _indices(self.alive[:self.count])
+        corner = np.zeros(len(self.points), dtype=bool)
+        corner[self.vertices[faces]] = True
+        candidates = candidates[~corner[candidates]]  # a corner is on the hull, never outside
         step = max(1, _BLOCK * 64 // len(faces))  # at most 4M heights at a time
         outside, owner, height = [], [], []
         for start in range(0, len(candidates), step):
@@ -405,10 +408,12 @@ class _Quickhull:
         (head, tail): when the eye is above the face, or level with it (within the
         tolerance) and the new face (tail, head, eye) would fold back over it (the face's
         third corner above the new face: a sliver from an eye nearly on the edge's line,
-        which qhull avoids by merging the two)."""
+        which qhull avoids by merging the two) or have no area (the eye on that line)."""
         height = np.einsum("ij,ij->i", self.normals[faces], eyes) - self.offsets[faces]
         takes: np.ndarray = height > self.tolerance
-        level = _indices(~takes & (height > -self.tolerance))
+        # level: within the tolerance, or as far below as an eye on the line of an edge
+        # (up to 2 * 3 ** 0.5 times the extent long) can be
+        level = _indices(~takes & (height > -4.0 * self.tolerance))
         if len(level):
             tail, head = tail[level], head[level]
             corner = self.vertices[faces[level]].sum(axis=1) - tail - head
@@ -416,7 +421,9 @@ class _Quickhull:
             cone = _normals(np.stack([base, self.points[head], eyes[level]], axis=1))
             length = np.sqrt(np.einsum("ij,ij->i", cone, cone))
             rise = np.einsum("ij,ij->i", cone, self.points[corner] - base)
-            takes[level] = rise > self.tolerance * length
+            edge = self.points[head] - base
+            flat = length <= self.tolerance * np.sqrt(np.einsum("ij,ij->i", edge, edge))
+            takes[level] = (rise > self.tolerance * length) | flat
         return takes
 
     def _replace(self, eye: np.ndarray, rank: np.ndarray, accepted: np.ndarray,
