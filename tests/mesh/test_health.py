@@ -95,11 +95,50 @@ def _pair_set(pairs: np.ndarray) -> set[tuple[int, int]]:
     return {(int(i), int(j)) for i, j in pairs}
 
 
+def _every_close_pair(points: np.ndarray, limit: float) -> np.ndarray:
+    """The reference: every pair compared (`limit`: the squared tolerance)."""
+    squared = ((points[:, None, :] - points[None, :, :]) ** 2).sum(axis=2)
+    rows, cols = np.nonzero(squared <= limit)
+    keep = cols > rows
+    return np.stack((rows[keep], cols[keep]), axis=1)
+
+
+def test_close_pairs_without_a_grid_are_the_pairs_of_the_pairwise_comparison(monkeypatch):
+    """Where the grid's cells cannot be numbered (a tolerance tiny against the cloud), the
+    sweep along x finds the same pairs, also in blocks; rows with a non-finite coordinate
+    are close to nothing; and no size imports scipy."""
+    import sys
+
+    from robotdesc.mesh import health
+
+    rng = np.random.default_rng(7)
+    spread = rng.uniform(-1.0, 1.0, (1500, 3))
+    spread[::2, 0] = spread[1::2, 0]  # equal x: the sweep compares these
+    spread[::5] = spread[1::5] + rng.normal(0, 1e-300, (300, 3))
+    for points, tol in ((spread, 1e-300), (spread, 0.05), (rng.uniform(0, 1, (500, 3)), 0.08)):
+        expected = _pair_set(_every_close_pair(points, tol * tol))
+        assert _pair_set(health._close_pairs_swept(points, tol, tol * tol)) == expected
+        assert _pair_set(health._close_pairs(points, tol)) == expected
+    monkeypatch.setattr(health, "_SWEEP_PAIRS", 64)  # many blocks, a row larger than one
+    points = np.concatenate([np.zeros((200, 3)), rng.uniform(0, 1, (300, 3))])
+    points[:200, 1] = np.arange(200) * 0.01
+    expected = _pair_set(_every_close_pair(points, 0.0004))
+    assert _pair_set(health._close_pairs_swept(points, 0.02, 0.0004)) == expected
+    broken = points.copy()
+    broken[[3, 7], 0] = np.nan
+    broken[11, 2] = np.inf
+    found = _pair_set(health._close_pairs(broken, 0.02))
+    assert found == {(i, j) for i, j in expected if {i, j}.isdisjoint({3, 7, 11})}
+    if "scipy" not in sys.modules:  # nothing above imported it
+        health._close_pairs(rng.uniform(0, 1, (20000, 3)), 1e-3)
+        assert "scipy" not in sys.modules
+
+
 def test_close_pairs_by_cells_are_the_pairs_of_the_pairwise_comparison():
     """The grid finds exactly the pairs every-pair comparison finds: random clouds with
     clusters, points on a lattice exactly one tolerance apart (the boundary case), repeated
     coordinates on a plane, and a tolerance wider than the cloud."""
-    from robotdesc.mesh.health import _close_pairs_in_cells, _close_pairs_pairwise
+    from robotdesc.mesh.health import _close_pairs_in_cells
 
     rng = np.random.default_rng(31)
     tolerance = 2.0 ** -10  # the lattice's neighbours are exactly this far apart
@@ -117,7 +156,7 @@ def test_close_pairs_by_cells_are_the_pairs_of_the_pairwise_comparison():
     for points in clouds:
         points = np.asarray(points, dtype=np.float64)
         for tol in (tolerance, 0.01) if len(points) > 300 else (tolerance, 0.05, 10.0):
-            expected = _pair_set(_close_pairs_pairwise(points, tol * tol))
+            expected = _pair_set(_every_close_pair(points, tol * tol))
             found = _close_pairs_in_cells(points, tol, tol * tol)
             assert found is not None
             assert _pair_set(found) == expected

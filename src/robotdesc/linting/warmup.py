@@ -28,9 +28,9 @@ _ALWAYS = ("robotdesc.model.parse", "robotdesc.rules.catalog")
 #: What reading meshes imports: numpy and the readers, the summary (numpy.ma: np.unique).
 _MESHES = ("robotdesc.mesh.summary", "numpy.ma")
 #: What summarizing meshes may import when the summaries are computed (no mesh cache, or an
-#: empty one): pycollada for .dae files, qhull for the hull of an open surface; the last
-#: ones, since they may not be needed at all.
-_MESH_ANALYSIS = ("collada", "scipy.spatial")
+#: empty one): pycollada for .dae files; last, since it may not be needed at all. (The hull
+#: of an open surface is numpy's, `robotdesc.mesh.hull`: a lint never imports scipy.)
+_MESH_ANALYSIS = ("collada",)
 
 
 class ImportsAhead:
@@ -92,7 +92,7 @@ def lint_imports(select: Sequence[str] | None, ignore: Sequence[str],
     Args:
         select, ignore: the selection that applies (as `select_rules` takes it).
         analyze_meshes: mesh files will be summarized, not read from a cache (none, or an
-            empty one): pycollada and qhull may be needed.
+            empty one): pycollada may be needed.
     """
     yield from _ALWAYS
     from robotdesc.rules.catalog import all_rules

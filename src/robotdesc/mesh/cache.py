@@ -35,7 +35,7 @@ from robotdesc.mesh.records import MassMethod, MeshHealth, MeshSummary
 
 log = logging.getLogger(__name__)
 
-CACHE_VERSION = 2
+CACHE_VERSION = 3  # 3: convex hulls by robotdesc.mesh.hull (numpy), not qhull
 #: The largest entry read: a summary or an index record is a few kilobytes.
 MAX_ENTRY_BYTES = 1 << 20
 #: Errors that depend on the limits in force, not on the file alone: never cached.

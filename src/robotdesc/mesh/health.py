@@ -212,36 +212,52 @@ def _repeated(faces: np.ndarray) -> np.ndarray:
     return repeated
 
 
-#: Up to this many points, `_close_pairs` looks in a grid of cells with numpy (about a
-#: millisecond; every pair compared where the grid cannot be numbered) rather than importing
-#: scipy's k-d tree (about 0.2 s of imports in a fresh process).
-_BRUTE_FORCE_POINTS = 2048
-
-
 def _close_pairs(points: np.ndarray, tolerance: float) -> np.ndarray:
     """(i, j) with i < j for every two points within `tolerance` (Euclidean) of each other,
-    as an (n, 2) integer array."""
-    if len(points) > _BRUTE_FORCE_POINTS:
-        from scipy.spatial import cKDTree
+    as an (n, 2) integer array.
 
-        found: np.ndarray = cKDTree(points).query_pairs(tolerance, output_type="ndarray")
-        return found
+    numpy alone, at any size (scipy's k-d tree costs about 0.2 s of imports in a fresh
+    process): a grid of cells, or where the grid's cells cannot be numbered in 64 bits, a
+    sweep along x. Points with a non-finite coordinate are close to nothing.
+    """
     points = np.asarray(points, dtype=np.float64)
+    finite = np.isfinite(points).all(axis=1)
+    if not finite.all():
+        kept = np.flatnonzero(finite)
+        found: np.ndarray = kept[_close_pairs(points[finite], tolerance)]
+        return found
     limit = tolerance * tolerance
     near = _close_pairs_in_cells(points, tolerance, limit)
-    return near if near is not None else _close_pairs_pairwise(points, limit)
+    return near if near is not None else _close_pairs_swept(points, tolerance, limit)
 
 
-def _close_pairs_pairwise(points: np.ndarray, limit: float) -> np.ndarray:
-    """`_close_pairs` by comparing every pair (`limit`: the squared tolerance)."""
+#: The most candidate pairs `_close_pairs_swept` holds at once.
+_SWEEP_PAIRS = 1 << 20
+
+
+def _close_pairs_swept(points: np.ndarray, tolerance: float, limit: float) -> np.ndarray:
+    """`_close_pairs` by sorting along x: each point is compared with those after it less
+    than `tolerance` further along x, a block of points at a time (at most `_SWEEP_PAIRS`
+    candidate pairs in memory; every pair when all x are that close)."""
+    count = len(points)
+    order = np.argsort(points[:, 0], kind="stable")
+    xs = points[order, 0]
+    later = np.searchsorted(xs, xs + tolerance, side="right") - np.arange(count) - 1
+    total = np.concatenate(([0], np.cumsum(later)))
     chunks = []
-    for start in range(0, len(points) - 1, 256):
-        block = points[start:start + 256]
-        squared = ((block[:, None, :] - points[None, :, :]) ** 2).sum(axis=2)
-        rows, cols = np.nonzero(squared <= limit)
-        rows += start
-        keep = cols > rows
-        chunks.append(np.stack((rows[keep], cols[keep]), axis=1))
+    start = 0
+    while start < count:
+        stop = int(np.searchsorted(total, total[start] + _SWEEP_PAIRS, side="right")) - 1
+        stop = min(max(stop, start + 1), count)
+        counts = later[start:stop]
+        rows = np.repeat(np.arange(start, stop), counts)
+        cols = rows + 1 + np.arange(int(counts.sum())) - np.repeat(np.cumsum(counts) - counts,
+                                                                    counts)
+        first, second = order[rows], order[cols]
+        close = ((points[first] - points[second]) ** 2).sum(axis=1) <= limit
+        first, second = first[close], second[close]
+        chunks.append(np.stack((np.minimum(first, second), np.maximum(first, second)), axis=1))
+        start = stop
     return np.concatenate(chunks) if chunks else np.zeros((0, 2), dtype=np.int64)
 
 
@@ -262,7 +278,8 @@ def _close_pairs_in_cells(points: np.ndarray, tolerance: float, limit: float
     low = points.min(axis=0)
     cells = np.floor((points - low) / (2.0 * tolerance))
     span = cells.max(axis=0) + 3.0  # one empty cell on each side for the neighbours
-    if not np.isfinite(span).all() or float(np.prod(span)) >= 2.0 ** 62:
+    if not np.isfinite(span).all() or float(span.max()) >= 2.0 ** 62 \
+            or float(np.prod(span)) >= 2.0 ** 62:
         return None
     cell = cells.astype(np.int64) + 1
     wide = span.astype(np.int64)

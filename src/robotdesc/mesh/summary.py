@@ -1,5 +1,5 @@
 """Summarize a loaded mesh: mass properties, bounds, health, and how the mass properties
-were obtained when the surface is not a clean closed solid (numpy; scipy for the hull).
+were obtained when the surface is not a clean closed solid (numpy only).
 
 Fallbacks, stated in `MeshSummary.method` and `notes`:
 - closed and oriented (every edge run as often each way), positive volume: the exact
@@ -19,12 +19,12 @@ through the cache in `robotdesc.mesh.analyze`; both are re-exported here.
 
 from __future__ import annotations
 
-import logging
 from typing import TypedDict
 
 import numpy as np
 
 from robotdesc.mesh.health import MeshHealth, hole_caps, merge_vertices, mesh_health, topology
+from robotdesc.mesh.hull import convex_hull_faces
 from robotdesc.mesh.load import LoadedMesh
 from robotdesc.mesh.mass import MassProperties, Vec3, VolumeIntegrals, bounds, volume_integrals
 from robotdesc.mesh.records import MassMethod, MeshSummary
@@ -32,7 +32,6 @@ from robotdesc.mesh.records import MassMethod, MeshSummary
 __all__ = ["FLAT_VOLUME_FRACTION", "MassMethod", "MeshSummary",
            "convex_hull_properties", "summarize"]
 
-log = logging.getLogger(__name__)
 
 #: A closed mesh whose |signed volume| is below this fraction of its bounding box's is flat.
 FLAT_VOLUME_FRACTION = 1e-9
@@ -97,24 +96,14 @@ def _flat(volume: float, box: tuple[Vec3, Vec3]) -> bool:
 
 
 def convex_hull_properties(triangles: np.ndarray) -> MassProperties | None:
-    """Mass properties at density 1 of the convex hull of a soup's vertices, or None when
-    the points span no volume (all coplanar or fewer than four distinct)."""
-    from scipy.spatial import ConvexHull, QhullError  # lazy: only the fallback needs qhull
-
+    """Mass properties at density 1 of the convex hull of a soup's vertices (numpy's own
+    quickhull, `robotdesc.mesh.hull`: no scipy), or None when the points span no volume
+    (fewer than four distinct, or all coplanar or collinear)."""
     points, _ = merge_vertices(triangles)
-    if len(points) < 4:
+    faces = convex_hull_faces(points)
+    if faces is None:
         return None
-    try:
-        hull = ConvexHull(points)
-    except (QhullError, ValueError) as error:
-        log.debug("convex hull failed: %s", error)
-        return None
-    faces = hull.simplices
-    soup = points[faces]
-    normal = np.cross(soup[:, 1] - soup[:, 0], soup[:, 2] - soup[:, 0])
-    inward = np.einsum("ij,ij->i", normal, hull.equations[:, :3]) < 0
-    soup[inward] = soup[inward][:, ::-1]
-    integrals = volume_integrals(soup)
+    integrals = volume_integrals(points[faces])
     return integrals.properties() if integrals.volume > 0 else None
 
 
