@@ -126,22 +126,30 @@ def lint_expanded(target: str, expanded: Expanded, config: Config, options: Expa
     package = (read_package_files(target, tuple((p.name, p.path) for p in expanded.packages),
                                   named_controller_files(expanded.xml))
                if any("package" in rule.needs for rule in rules) else None)
-    diagnostics: list[Diagnostic] = []
-    for rule in rules:
-        configured = config.options_for(rule.code)
-        context = RuleContext(options=configured if configured is not None
-                              else rule.default_options(), expansion=facts,
-                              meshes=meshes if "meshes" in rule.needs else None,
-                              document=document if "document" in rule.needs else None,
-                              package=package if "package" in rule.needs else None)
-        try:
-            findings = _run_cached(rule, robot, context, expanded, options)
-        except RobotdescError:
-            raise
-        except Exception as exc:  # a crashing rule is a bug: report it, naming the rule
-            raise RuleCrashed(rule.code, rule.name, target, exc) from exc
-        severity = config.severity_for(rule.code, rule.severity)
-        diagnostics.extend(_diagnostic(rule, severity, f, fallback, target) for f in findings)
+    found: dict[str, list[Diagnostic]] = {}
+    if meshes is not None:
+        meshes.summarize_ahead()
+    try:  # the rules that read no mesh first: meanwhile a child may summarize the meshes
+        for rule in sorted(rules, key=lambda rule: "meshes" in rule.needs):
+            configured = config.options_for(rule.code)
+            context = RuleContext(options=configured if configured is not None
+                                  else rule.default_options(), expansion=facts,
+                                  meshes=meshes if "meshes" in rule.needs else None,
+                                  document=document if "document" in rule.needs else None,
+                                  package=package if "package" in rule.needs else None)
+            try:
+                findings = _run_cached(rule, robot, context, expanded, options)
+            except RobotdescError:
+                raise
+            except Exception as exc:  # a crashing rule is a bug: report it, naming the rule
+                raise RuleCrashed(rule.code, rule.name, target, exc) from exc
+            severity = config.severity_for(rule.code, rule.severity)
+            found[rule.code] = [_diagnostic(rule, severity, f, fallback, target)
+                                for f in findings]
+    finally:
+        if meshes is not None:
+            meshes.close()
+    diagnostics = [d for rule in rules for d in found[rule.code]]  # in the rules' order
 
     ignored = [d for d in diagnostics if _ignored_for_file(d, config)]
     diagnostics = [d for d in diagnostics if not _ignored_for_file(d, config)]

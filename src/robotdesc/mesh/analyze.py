@@ -19,7 +19,8 @@ if TYPE_CHECKING:
 
 def analyze_mesh_file(path: str | os.PathLike[str], scale: Sequence[float] = (1.0, 1.0, 1.0),
                       limits: MeshLimits = DEFAULT_LIMITS,
-                      cache: MeshCache | None = None) -> MeshSummary:
+                      cache: MeshCache | None = None,
+                      computed: MeshSummary | MeshError | None = None) -> MeshSummary:
     """Load and summarize a mesh file, through the cache when one is given.
 
     Args:
@@ -27,6 +28,8 @@ def analyze_mesh_file(path: str | os.PathLike[str], scale: Sequence[float] = (1.
         scale: the URDF `<mesh scale>` applied to its coordinates.
         limits: size limits for reading it.
         cache: where summaries are kept by content hash and scale; None computes afresh.
+        computed: the file's summary (or mesh error) already computed from these arguments
+            (`robotdesc.mesh.prefetch`): used, and stored, on a cache miss.
 
     Raises:
         MeshError: the file cannot be used as a mesh (also served from the cache).
@@ -39,11 +42,10 @@ def analyze_mesh_file(path: str | os.PathLike[str], scale: Sequence[float] = (1.
             if isinstance(hit, MeshError):
                 raise hit
             return hit
-    from robotdesc.mesh.load import load_mesh  # lazy: numpy and the format readers
-    from robotdesc.mesh.summary import summarize
-
     try:
-        summary = summarize(load_mesh(name, scale, limits))
+        if isinstance(computed, MeshError):
+            raise computed
+        summary = computed if computed is not None else summarize_file(name, scale, limits)
     except MeshError as error:
         if cache is not None and key is not None:
             cache.put_error(key, error)
@@ -51,3 +53,15 @@ def analyze_mesh_file(path: str | os.PathLike[str], scale: Sequence[float] = (1.
     if cache is not None and key is not None:
         cache.put(key, summary)
     return summary
+
+
+def summarize_file(name: str, scale: Sequence[float], limits: MeshLimits) -> MeshSummary:
+    """Load and summarize a mesh file (no cache).
+
+    Raises:
+        MeshError: the file cannot be used as a mesh.
+    """
+    from robotdesc.mesh.load import load_mesh  # lazy: numpy and the format readers
+    from robotdesc.mesh.summary import summarize
+
+    return summarize(load_mesh(name, scale, limits))

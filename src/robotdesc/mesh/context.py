@@ -21,10 +21,11 @@ from dataclasses import dataclass
 
 from robotdesc.cache_dir import cache_folder
 from robotdesc.expansion.packages import package_lookup
-from robotdesc.mesh.analyze import analyze_mesh_file
+from robotdesc.mesh.analyze import analyze_mesh_file, summarize_file
 from robotdesc.mesh.cache import MeshCache
 from robotdesc.mesh.errors import DEFAULT_LIMITS, MeshError, MeshLimits
 from robotdesc.mesh.locate import MeshLocator
+from robotdesc.mesh.prefetch import MIN_JOBS, Job, Prefetch, can_fork
 from robotdesc.mesh.primitives import primitive_properties
 from robotdesc.mesh.properties import MassProperties, Vec3, combine, moved_bounds
 from robotdesc.mesh.records import MassMethod, MeshSummary
@@ -127,6 +128,7 @@ class MeshContext:
         self.locator = MeshLocator.with_settings(robot, find_package, settings)
         self._meshes: tuple[MeshUse, ...] | None = None
         self._by_ref: dict[int, tuple[MeshRef, MeshLookup]] = {}  # every rule asks again
+        self._ahead: Prefetch | None = None
 
     def find_package(self, name: str) -> str | None:
         """The root directory of package `name` through the lint's resolver chain (the
@@ -169,12 +171,39 @@ class MeshContext:
         if not resolution.ok or resolution.path is None:
             return MeshLookup(ref, resolution)
         try:
-            summary = _summary(resolution.path, tuple(ref.scale), self._limits, self._cache)
+            summary = _summary(resolution.path, tuple(ref.scale), self._limits, self._cache,
+                               self._ahead)
         except MeshError as error:
             return MeshLookup(ref, resolution, error=error)
         return MeshLookup(ref, resolution, summary)
 
     # --- all meshes ---------------------------------------------------------------------
+
+    def summarize_ahead(self) -> None:
+        """Start summarizing, in a forked child process (`robotdesc.mesh.prefetch`), the
+        mesh files no summary is known for yet (none in this process, and no mesh cache or
+        an empty one), when there are several and this process may fork: the caller does
+        other work meanwhile, and `lookup` takes each summary from the child."""
+        if self._ahead is not None or not can_fork() or not (
+                self._cache is None or self._cache.is_empty()):
+            return
+        jobs: list[Job] = []
+        for _link, _kind, _index, _shape, ref in self.meshes():
+            resolution = self.locator.locate(ref)
+            if resolution.ok and resolution.path is not None:
+                job = (resolution.path, tuple(ref.scale))
+                if job not in jobs and _remembered(job[0], job[1], self._limits,
+                                                   self._cache) is None:
+                    jobs.append(job)
+        if len(jobs) >= MIN_JOBS:
+            self._ahead = Prefetch(jobs, self._limits, summarize_file)
+
+    def close(self) -> None:
+        """End the child `summarize_ahead` started, if any (summaries not taken yet are
+        computed here when asked for)."""
+        if self._ahead is not None:
+            self._ahead.close()
+            self._ahead = None
 
     def meshes(self) -> Iterator[MeshUse]:
         """Every `<mesh>`: (link, "visual" | "collision", index, element, reference)."""
@@ -280,32 +309,51 @@ _SUMMARY_ENTRIES = 10_000
 
 
 def _summary(path: str, scale: tuple[float, ...], limits: MeshLimits,
-             cache: MeshCache | None) -> MeshSummary:
+             cache: MeshCache | None, ahead: Prefetch | None = None) -> MeshSummary:
     """`analyze_mesh_file`, remembered in this process under the file's identity (as
     `os.stat` gives it), so that the variants of a description and an editor's saves neither
-    hash nor read a mesh file again until it changes.
+    hash nor read a mesh file again until it changes; on a miss, the summary `ahead`
+    computed is used when it has one.
 
     Raises:
         MeshError: the file cannot be used as a mesh.
     """
-    try:
-        info = os.stat(path)
-    except OSError:
-        return analyze_mesh_file(path, scale, limits, cache)
-    key = (path, info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns, info.st_ctime_ns,
-           scale, limits, None if cache is None else str(cache.directory))  # a cache gets it
-    found = _SUMMARIES.get(key)
+    key = _memo_key(path, scale, limits, cache)
+    found = _SUMMARIES.get(key) if key is not None else None
     if found is None:
+        computed = ahead.take(path, scale) if ahead is not None else None
         try:
-            found = analyze_mesh_file(path, scale, limits, cache)
+            found = analyze_mesh_file(path, scale, limits, cache, computed)
         except MeshError as error:
+            if key is None:
+                raise
             found = error
-        if len(_SUMMARIES) >= _SUMMARY_ENTRIES:
-            _SUMMARIES.clear()
-        _SUMMARIES[key] = found
+        if key is not None:
+            if len(_SUMMARIES) >= _SUMMARY_ENTRIES:
+                _SUMMARIES.clear()
+            _SUMMARIES[key] = found
     if isinstance(found, MeshError):
         raise found.with_traceback(None)
     return found
+
+
+def _memo_key(path: str, scale: tuple[float, ...], limits: MeshLimits,
+              cache: MeshCache | None) -> tuple[object, ...] | None:
+    """The key of a file's summary in this process: its identity and contents' stamp as
+    `os.stat` gives them, and the arguments; None when it cannot be stat'ed."""
+    try:
+        info = os.stat(path)
+    except OSError:
+        return None
+    return (path, info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns, info.st_ctime_ns,
+            scale, limits, None if cache is None else str(cache.directory))  # a cache gets it
+
+
+def _remembered(path: str, scale: tuple[float, ...], limits: MeshLimits,
+                cache: MeshCache | None) -> MeshSummary | MeshError | None:
+    """The summary of a file this process already has (`_summary`'s memo), or None."""
+    key = _memo_key(path, scale, limits, cache)
+    return _SUMMARIES.get(key) if key is not None else None
 
 
 #: One shape as `_measure` combines it: its properties at density 1, local bounds and

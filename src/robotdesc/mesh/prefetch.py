@@ -1,0 +1,237 @@
+"""Mesh summaries computed by two processes at once: this one and a forked child (a cold
+lint: the meshes of a description are summarized on both cores, the one the xacro worker
+has just left and this one).
+
+The jobs are shared through a page both processes see (`mmap`, one byte per job: whose it
+is). The child takes the unclaimed jobs from the largest file down; this process, asked for
+a job (`take`), summarizes it itself when nobody claimed it, and while the child works on it,
+takes the smallest unclaimed jobs meanwhile. Two claims at the same moment only mean a file
+summarized twice. The child is a fork of this process (numpy and the mesh readers are
+imported already); it writes one JSON line per summary on a pipe, as the mesh cache stores
+them (`summary_to_json`), then ends at once (`os._exit`); this process reads them as it reads
+a cache entry (`summary_from_json`: shapes checked). A job the child failed on, or left when
+it ended, is summarized here. Linux only, and only from a process with no other thread (a
+fork copies no other thread, and a lock another thread holds would stay held in the child:
+only threads that draw progress may run meanwhile).
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import mmap
+import os
+import select
+import signal
+import sys
+import threading
+from collections.abc import Callable, Sequence
+
+from robotdesc.expansion.confine import die_with_parent
+from robotdesc.mesh.cache import summary_from_json, summary_to_json
+from robotdesc.mesh.errors import MeshError, MeshErrorKind, MeshLimits
+from robotdesc.mesh.records import MeshSummary
+
+log = logging.getLogger(__name__)
+
+#: A file to summarize: (path, the `<mesh scale>` applied to it).
+Job = tuple[str, tuple[float, ...]]
+#: Summarizes one job (loads the file): the summary, or MeshError.
+Summarize = Callable[[str, Sequence[float], MeshLimits], MeshSummary]
+
+#: Fewer files than this are summarized here alone (a fork costs a few milliseconds).
+MIN_JOBS = 4
+
+#: Longest answer read from the child at once (a summary is well under a kilobyte).
+_MAX_LINE = 1 << 20
+
+#: Who claimed a job, in the shared page.
+_FREE, _HERE, _CHILD = 0, 1, 2
+
+
+def can_fork() -> bool:
+    """Whether this process may fork a child that runs Python: Linux, and no other thread
+    but those that draw progress (they run none of the code the child runs, so no lock they
+    hold can stop the child)."""
+    return sys.platform.startswith("linux") and hasattr(os, "fork") and all(
+        thread is threading.current_thread() or _draws_progress(thread)
+        for thread in threading.enumerate())
+
+
+def _draws_progress(thread: threading.Thread) -> bool:
+    """robotdesc's progress lines (`robotdesc.progress`) and rich's bar refresh."""
+    return thread.daemon and (thread.name.startswith("robotdesc-progress-")
+                              or type(thread).__name__ == "_RefreshThread")
+
+
+class Prefetch:
+    """The summaries of `jobs`, made by this process and a forked child together.
+
+    Args:
+        jobs: the files, in the order they will be asked for.
+        limits: the size limits both processes read them with.
+        summarize: what summarizes a file (`robotdesc.mesh.analyze`'s, without the cache).
+    """
+
+    def __init__(self, jobs: Sequence[Job], limits: MeshLimits, summarize: Summarize) -> None:
+        self._jobs = list(jobs)
+        self._index = {job: number for number, job in reversed(list(enumerate(jobs)))}
+        self._limits = limits
+        self._summarize = summarize
+        self._answers: dict[int, MeshSummary | MeshError | None] = {}
+        self._pending = b""
+        self._fd = -1
+        self._pid = 0
+        self._claims = mmap.mmap(-1, max(1, len(jobs)))  # shared with the child after fork
+        self._largest_first = _by_size(self._jobs)
+        read_end, write_end = os.pipe()
+        parent = os.getpid()
+        try:
+            pid = os.fork()
+        except OSError as error:
+            os.close(read_end)
+            os.close(write_end)
+            log.debug("mesh summaries not computed in a second process: %s", error)
+            return
+        if pid == 0:  # the child: never returns
+            os.close(read_end)
+            self._serve(write_end, parent)
+        os.close(write_end)
+        self._pid, self._fd = pid, read_end
+
+    def take(self, path: str, scale: Sequence[float]) -> MeshSummary | MeshError | None:
+        """The summary of a file (or why it cannot be used as a mesh); None when it is not
+        one of the jobs, or the child failed on it: the caller summarizes it itself."""
+        number = self._index.get((path, tuple(scale)))
+        if number is None:
+            return None
+        if number not in self._answers and self._claim(number):
+            self._answers[number] = self._here(number)
+        while number not in self._answers and self._fd >= 0:
+            self._read(wait=False)
+            if number in self._answers:
+                break
+            other = self._smallest_free()
+            if other is None:
+                self._read(wait=True)
+            elif self._claim(other):
+                self._answers[other] = self._here(other)
+        return self._answers.pop(number, None)
+
+    def close(self) -> None:
+        """End the child (when it still runs) and reap it."""
+        if self._fd >= 0:
+            os.close(self._fd)
+            self._fd = -1
+        if self._pid:
+            try:
+                os.kill(self._pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+            try:
+                os.waitpid(self._pid, 0)
+            except ChildProcessError:
+                pass
+            self._pid = 0
+
+    def __del__(self) -> None:
+        self.close()
+
+    # --- this process -------------------------------------------------------------------
+
+    def _claim(self, number: int) -> bool:
+        """Claim a job for this process: False when the child has it (and still runs)."""
+        if self._claims[number] == _CHILD and self._fd >= 0:
+            return False
+        self._claims[number] = _HERE
+        return True
+
+    def _here(self, number: int) -> MeshSummary | MeshError | None:
+        path, scale = self._jobs[number]
+        try:
+            return self._summarize(path, scale, self._limits)
+        except MeshError as error:
+            return error
+        except Exception:  # noqa: BLE001 -- summarized again where it is asked for: raised there
+            return None
+
+    def _smallest_free(self) -> int | None:
+        for number in reversed(self._largest_first):
+            if self._claims[number] == _FREE and number not in self._answers:
+                return number
+        return None
+
+    def _read(self, wait: bool) -> None:
+        """Take in the child's answers written so far (`wait`: at least one more)."""
+        if self._fd < 0:
+            return
+        ready, _, _ = select.select([self._fd], [], [], None if wait else 0)
+        if not ready:
+            return
+        chunk = os.read(self._fd, 1 << 16)
+        if not chunk or len(self._pending) + len(chunk) > _MAX_LINE:
+            self.close()  # the child ended (or wrote what it does not write)
+            return
+        *lines, self._pending = (self._pending + chunk).split(b"\n")
+        for line in lines:
+            self._record(line)
+
+    def _record(self, line: bytes) -> None:
+        try:
+            record = json.loads(line)
+            number = int(record["job"])
+            if not 0 <= number < len(self._jobs):
+                raise ValueError(f"no job {number}")
+            if number in self._answers:
+                return  # both summarized it: this process's is kept
+            if "summary" in record:
+                self._answers[number] = summary_from_json(record["summary"])
+            elif "error" in record:
+                self._answers[number] = MeshError(MeshErrorKind(record["error"]["kind"]),
+                                                  str(record["error"]["detail"]),
+                                                  self._jobs[number][0])
+            else:  # the child failed on it: summarized where it is asked for
+                self._answers[number] = None
+        except (ValueError, KeyError, TypeError) as error:
+            log.debug("mesh summaries of the second process: unreadable answer (%s)", error)
+            self.close()
+
+    # --- the child ----------------------------------------------------------------------
+
+    def _serve(self, out: int, parent: int) -> None:
+        """Summarize each free job, largest first, one JSON line each; end without
+        cleanup (nothing of this process's state is flushed or torn down twice)."""
+        try:
+            die_with_parent(parent)
+            signal.signal(signal.SIGINT, signal.SIG_DFL)
+            signal.signal(signal.SIGTERM, signal.SIG_DFL)
+            for number in self._largest_first:
+                if self._claims[number] != _FREE:
+                    continue
+                self._claims[number] = _CHILD
+                path, scale = self._jobs[number]
+                record: dict[str, object] = {"job": number}
+                try:
+                    record["summary"] = summary_to_json(
+                        self._summarize(path, scale, self._limits))
+                except MeshError as error:
+                    record["error"] = {"kind": error.kind.value, "detail": error.detail}
+                except Exception:  # noqa: BLE001 -- summarized again by the parent
+                    record["failed"] = True
+                data = (json.dumps(record, separators=(",", ":")) + "\n").encode()
+                while data:
+                    data = data[os.write(out, data):]
+        finally:  # whatever happened: the parent reads the end and does the rest
+            os._exit(0)
+
+
+def _by_size(jobs: Sequence[Job]) -> list[int]:
+    """The jobs' numbers, the largest file first (the time to summarize a file grows with
+    its size)."""
+    sizes = []
+    for number, (path, _) in enumerate(jobs):
+        try:
+            sizes.append((-os.path.getsize(path), number))
+        except OSError:
+            sizes.append((0, number))
+    return [number for _, number in sorted(sizes)]
