@@ -39,12 +39,14 @@ def _run(page: Path, *extra: str) -> subprocess.CompletedProcess:
                               capture_output=True, check=False, text=True, timeout=180)
 
 
-def screenshot(page: Path, png: Path, size: tuple[int, int] = (1200, 800)) -> np.ndarray:
-    """The page rendered at `size` (width, height) as an (h, w, 3) uint8 array."""
+def screenshot(page: Path, png: Path, size: tuple[int, int] = (1200, 800),
+               budget_ms: int = 4000) -> np.ndarray:
+    """The page rendered at `size` (width, height) as an (h, w, 3) uint8 array, after
+    `budget_ms` of the page's virtual time."""
     from PIL import Image
 
     done = _run(page, f"--screenshot={png}", f"--window-size={size[0]},{size[1]}",
-                "--virtual-time-budget=4000")
+                f"--virtual-time-budget={budget_ms}")
     assert png.is_file(), f"no screenshot: {done.stderr[-2000:]}"
     return np.asarray(Image.open(png).convert("RGB"))
 

@@ -9,6 +9,7 @@ import os
 import re
 import shutil
 import subprocess
+import time
 import zlib
 from pathlib import Path
 
@@ -66,10 +67,13 @@ def test_the_preview_draws_the_robot_in_a_sandboxed_frame(tmp_path: Path) -> Non
     page.write_text(f"<!DOCTYPE html><html><body style='margin:0'>"
                     f"{preview_iframe(view.document, '760px')}</body></html>")
     # the frame inflates its meshes asynchronously (DecompressionStream), which Chromium's
-    # virtual time does not always wait for on a loaded machine: up to three screenshots
+    # virtual time does not always wait for on a loaded machine: up to five screenshots,
+    # each with more virtual time
     drawn = 0.0
-    for attempt in range(3):
-        drawn = drawn_pixels(screenshot(page, tmp_path / f"preview{attempt}.png"))
+    for attempt in range(5):
+        drawn = drawn_pixels(screenshot(page, tmp_path / f"preview{attempt}.png",
+                                        budget_ms=4000 * (attempt + 1)))
         if drawn > 0.02:
             break
+        time.sleep(0.5 * attempt)
     assert drawn > 0.02
