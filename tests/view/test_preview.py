@@ -14,12 +14,12 @@ import zlib
 from pathlib import Path
 
 import pytest
-from view.browser import drawn_pixels, screenshot
-from view.robots import write_demo_package
 
 import robotdesc
 from robotdesc.view.html import embedded_json, viewer_script
 from robotdesc.view.preview import INFLATE_RESOURCE, preview_document, preview_iframe
+from view.browser import drawn_pixels, screenshot
+from view.robots import write_demo_package
 
 INFLATE = Path(robotdesc.__file__).parent / "view" / INFLATE_RESOURCE
 
