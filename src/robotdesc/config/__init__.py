@@ -41,8 +41,9 @@ against a type hint), `locate` (a key's TOML line, named by every `ConfigError`)
 
 from __future__ import annotations
 
-import importlib
 from typing import TYPE_CHECKING
+
+from robotdesc.lazy import lazy_exports
 
 if TYPE_CHECKING:
     from robotdesc.config.discovery import discover_config, load_config
@@ -83,11 +84,4 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str) -> object:
-    """A name of the package, from the module that defines it (PEP 562)."""
-    module = _EXPORTS.get(name)
-    if module is None:
-        raise AttributeError(f"module 'robotdesc.config' has no attribute '{name}'")
-    value = getattr(importlib.import_module(module), name)
-    globals()[name] = value
-    return value
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

@@ -10,8 +10,9 @@ The names below are imported on first use (PEP 562): the worker process imports
 
 from __future__ import annotations
 
-import importlib
 from typing import TYPE_CHECKING
+
+from robotdesc.lazy import lazy_exports
 
 if TYPE_CHECKING:
     from robotdesc.expansion.expand import (
@@ -42,11 +43,4 @@ __all__ = ["DEFAULT_ENV_ALLOWLIST", "MAX_URDF_BYTES", "ExpandOptions", "Expanded
            "expand_file", "holds_substitutions", "is_xacro", "looks_binary"]
 
 
-def __getattr__(name: str) -> object:
-    """A name of the package, from the module that defines it (PEP 562)."""
-    module = _EXPORTS.get(name)
-    if module is None:
-        raise AttributeError(f"module 'robotdesc.expansion' has no attribute '{name}'")
-    value = getattr(importlib.import_module(module), name)
-    globals()[name] = value
-    return value
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

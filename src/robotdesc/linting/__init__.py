@@ -8,8 +8,7 @@ baseline.py hides findings already recorded.
 
 from __future__ import annotations
 
-import importlib
-from typing import Any
+from robotdesc.lazy import lazy_exports
 
 _LAZY = {"lint_file": "driver", "LintResult": "result", "RuleCrashed": "result",
          "LintFailure": "result",
@@ -19,8 +18,4 @@ __all__ = ["LintFailure", "LintResult", "LintTarget", "RuleCrashed", "discover_t
            "lint_file", "lint_targets"]
 
 
-def __getattr__(name: str) -> Any:
-    if name not in _LAZY:
-        raise AttributeError(f"module 'robotdesc.linting' has no attribute '{name}'")
-
-    return getattr(importlib.import_module(f"robotdesc.linting.{_LAZY[name]}"), name)
+__getattr__, __dir__ = lazy_exports(__name__, _LAZY)

@@ -8,8 +8,7 @@ never imports numpy, trimesh or scipy. Heavy readers are imported only when a fi
 
 from __future__ import annotations
 
-import importlib
-from typing import Any
+from robotdesc.lazy import lazy_exports
 
 #: Public name -> the submodule defining it.
 _EXPORTS = {
@@ -36,14 +35,4 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str) -> Any:
-    module = _EXPORTS.get(name)
-    if module is None:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"{__name__}.{module}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_EXPORTS))
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
