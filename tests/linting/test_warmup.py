@@ -10,7 +10,9 @@ import pytest
 
 from robotdesc.expansion import ExpandOptions, expand_file
 from robotdesc.linting.driver import lint_file
+from robotdesc.linting import warmup
 from robotdesc.linting.warmup import ImportsAhead, lint_imports
+from robotdesc.mesh.prefetch import forks_here
 
 XACRO = """<?xml version="1.0"?>
 <robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
@@ -85,5 +87,14 @@ def test_what_is_imported_follows_the_selection() -> None:
     default = list(lint_imports(None, (), analyze_meshes=False))
     assert "robotdesc.mesh.summary" in default and "collada" not in default
     cold = list(lint_imports(None, (), analyze_meshes=True))
-    assert cold[-1] == "collada"
+    # pycollada last; not where a forked child shares the summaries (it imports it there)
+    assert (cold[-1] == "collada") != forks_here()
     assert not any(name.startswith("scipy") for name in cold)  # the hull is numpy's
+
+
+def test_pycollada_is_imported_ahead_where_no_child_shares_the_summaries(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(warmup, "forks_here", lambda: False)
+    assert list(lint_imports(None, (), analyze_meshes=True))[-1] == "collada"
+    monkeypatch.setattr(warmup, "forks_here", lambda: True)
+    assert "collada" not in lint_imports(None, (), analyze_meshes=True)

@@ -19,6 +19,7 @@ import sys
 import threading
 from collections.abc import Callable, Iterable, Iterator, Sequence
 
+from robotdesc.mesh.prefetch import forks_here
 from robotdesc.rules.select import select_rules
 
 log = logging.getLogger(__name__)
@@ -28,8 +29,10 @@ _ALWAYS = ("robotdesc.model.parse", "robotdesc.rules.catalog")
 #: What reading meshes imports: numpy and the readers, the summary (numpy.ma: np.unique).
 _MESHES = ("robotdesc.mesh.summary", "numpy.ma")
 #: What summarizing meshes may import when the summaries are computed (no mesh cache, or an
-#: empty one): pycollada for .dae files; last, since it may not be needed at all. (The hull
-#: of an open surface is numpy's, `robotdesc.mesh.hull`: a lint never imports scipy.)
+#: empty one): pycollada for .dae files; last, since it may not be needed at all, and not
+#: where a forked child shares the summaries (`robotdesc.mesh.prefetch`: the COLLADA files
+#: are the child's, which imports it). (The hull of an open surface is numpy's,
+#: `robotdesc.mesh.hull`: a lint never imports scipy.)
 _MESH_ANALYSIS = ("collada",)
 
 
@@ -102,5 +105,5 @@ def lint_imports(select: Sequence[str] | None, ignore: Sequence[str],
         yield from _MESHES
     if "pinocchio" in needs:
         yield "pinocchio"
-    if "meshes" in needs and analyze_meshes:
-        yield from _MESH_ANALYSIS
+    if "meshes" in needs and analyze_meshes and not forks_here():
+        yield from _MESH_ANALYSIS  # else the child that shares the summaries imports them

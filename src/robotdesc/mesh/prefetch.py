@@ -51,11 +51,16 @@ _MAX_LINE = 1 << 20
 _FREE, _HERE, _CHILD = 0, 1, 2
 
 
+def forks_here() -> bool:
+    """Whether mesh summaries can be shared with a forked child on this platform (Linux)."""
+    return sys.platform.startswith("linux") and hasattr(os, "fork")
+
+
 def can_fork() -> bool:
-    """Whether this process may fork a child that runs Python: Linux, and no other thread
-    but those that draw progress (they run none of the code the child runs, so no lock they
-    hold can stop the child)."""
-    return sys.platform.startswith("linux") and hasattr(os, "fork") and all(
+    """Whether this process may fork a child that runs Python now: `forks_here`, and no
+    other thread but those that draw progress (they run none of the code the child runs, so
+    no lock they hold can stop the child)."""
+    return forks_here() and all(
         thread is threading.current_thread() or _draws_progress(thread)
         for thread in threading.enumerate())
 
