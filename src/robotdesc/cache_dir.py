@@ -157,6 +157,13 @@ def _seal_of(data: bytes) -> bytes:
     return hmac.new(secret, data, hashlib.sha256).hexdigest().encode()
 
 
+def entry_file(folder: str | os.PathLike[str], key: str, suffix: str = ".json") -> Path:
+    """Where a cache keeps the entry of `key` in its `folder`: in a subfolder named by the
+    key's first two characters (a write lists its folder for stale temporaries: a few
+    dozen entries, not thousands)."""
+    return Path(folder) / key[:2] / f"{key}{suffix}"
+
+
 def write_entry(path: str | os.PathLike[str], data: bytes) -> None:
     """Store a cache entry atomically, sealed (see the module's docstring).
 

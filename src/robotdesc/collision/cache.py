@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from robotdesc.cache_dir import read_entry, write_entry
+from robotdesc.cache_dir import entry_file, read_entry, write_entry
 from robotdesc.collision.result import Finding, LinkOutcome, LinkReport, MeshPart, PrimitivePart
 from robotdesc.model.elements import Box, Capsule, Cylinder, Pose, Sphere
 
@@ -75,7 +75,7 @@ class CollisionCache:
             log.warning("collision cache not written to %s: %s", self.root, error)
 
     def _path(self, key: str) -> Path:
-        return self.root / key[:2] / f"{key}.npz"
+        return entry_file(self.root, key, ".npz")
 
 
 def _report(data: dict[str, Any]) -> LinkReport:

@@ -34,7 +34,7 @@ from types import TracebackType
 from typing import NamedTuple, TextIO
 
 from robotdesc.code_stamp import FINDING_BACKENDS, code_id, module_stamp
-from robotdesc.cache_dir import cache_root, read_entry, write_entry
+from robotdesc.cache_dir import cache_root, entry_file, read_entry, write_entry
 from robotdesc.config.files import find_config_file
 from robotdesc.digest import FileStamp, file_digest, file_stamp
 from robotdesc.errors import InputError
@@ -105,7 +105,7 @@ def replay(words: Sequence[str]) -> int | None:
     if root is None:
         return None
     key = replay_key(words)
-    raw = read_entry(_entry_path(root, key), MAX_ENTRY_BYTES)
+    raw = read_entry(entry_file(root / "replay", key), MAX_ENTRY_BYTES)
     if raw is None:
         return None
     try:
@@ -140,10 +140,6 @@ def _terminal(stream: TextIO) -> list[int] | None:
         return [size.columns, size.lines]
     except (AttributeError, ValueError, OSError):
         return None
-
-
-def _entry_path(root: os.PathLike[str] | str, key: str) -> str:
-    return os.path.join(root, "replay", key[:2], f"{key}.json")
 
 
 def _parsed(record: object, key: str) -> _Entry | None:
@@ -260,4 +256,4 @@ class Recording:
                  "arguments": [list(a) for a in record.arguments]}
         data = json.dumps(entry).encode()
         if len(data) <= MAX_ENTRY_BYTES:
-            write_entry(_entry_path(root, key), data)
+            write_entry(entry_file(root / "replay", key), data)

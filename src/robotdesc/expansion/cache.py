@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from robotdesc.code_stamp import code_id, module_stamp
-from robotdesc.cache_dir import read_entry, write_entry
+from robotdesc.cache_dir import entry_file, read_entry, write_entry
 from robotdesc.digest import file_digest
 from robotdesc.expansion.result import Expanded, MacroRecursion, ResolvedPackage, decode_input_facts
 from robotdesc.source import Span
@@ -46,10 +46,6 @@ def cache_key(settings: dict[str, object]) -> str:
     return hashlib.sha256(material.encode()).hexdigest()
 
 
-def _entry_path(cache_dir: Path, key: str) -> Path:
-    return cache_dir / "expand" / key[:2] / f"{key}.json"
-
-
 def load(cache_dir: Path | None, key: str, top: str) -> Expanded | None:
     """The cached expansion for `key`, or None when absent, stale, unusable or off.
 
@@ -60,7 +56,7 @@ def load(cache_dir: Path | None, key: str, top: str) -> Expanded | None:
     """
     if cache_dir is None:
         return None
-    entry = _entry_path(cache_dir, key)
+    entry = entry_file(cache_dir / "expand", key)
     data = read_entry(entry, MAX_ENTRY_BYTES)
     if data is None:
         return None
@@ -102,7 +98,7 @@ def store(cache_dir: Path | None, key: str, expanded: Expanded) -> None:
             return  # an input vanished: do not cache
         inputs[path] = digest
     record = {"key": key, "inputs": inputs, "expanded": _encode(expanded)}
-    entry = _entry_path(cache_dir, key)
+    entry = entry_file(cache_dir / "expand", key)
     try:
         write_entry(entry, json.dumps(record).encode("utf-8"))
     except OSError as exc:

@@ -44,7 +44,7 @@ from pathlib import Path
 from typing import Any
 
 from robotdesc.code_stamp import FINDING_BACKENDS, code_id, module_stamp
-from robotdesc.cache_dir import cache_folder, read_entry, write_entry
+from robotdesc.cache_dir import cache_folder, entry_file, read_entry, write_entry
 from robotdesc.diagnostics import Diagnostic, Severity
 from robotdesc.digest import FileStamp, file_digest, file_stamp
 from robotdesc.expansion import DEFAULT_ENV_ALLOWLIST, ExpandOptions
@@ -96,7 +96,7 @@ class CacheKey:
     @property
     def path(self) -> Path:
         """The entry's file."""
-        return self.folder / "results" / self.digest[:2] / f"{self.digest}.json"
+        return entry_file(self.folder / "results", self.digest)
 
 
 def result_key(target: str, *, config: object, args: Mapping[str, str],

@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import Any
 
 from robotdesc.code_stamp import code_id, module_stamp
-from robotdesc.cache_dir import read_entry, write_entry
+from robotdesc.cache_dir import entry_file, read_entry, write_entry
 from robotdesc.diagnostics import Finding, ValueChange
 from robotdesc.rules.registry import Rule
 from robotdesc.source import Provenance, Span
@@ -99,10 +99,8 @@ def load(cache_dir: Path | None, key: str,
 
 
 def entry_path(cache_dir: Path, key: str) -> Path:
-    """Where the entry of `key` is kept: in a folder per first two characters of the key, as
-    the other caches (a write lists its folder for stale temporaries: a few dozen entries,
-    not thousands)."""
-    return cache_dir / "rules" / key[:2] / f"{key}.json"
+    """Where the rule cache keeps the entry of `key`."""
+    return entry_file(cache_dir / "rules", key)
 
 
 def store(cache_dir: Path | None, key: str, findings: list[Finding]) -> None:

@@ -27,7 +27,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
-from robotdesc.cache_dir import cache_root, read_entry, write_entry
+from robotdesc.cache_dir import cache_root, entry_file, read_entry, write_entry
 from robotdesc.digest import file_digest
 from robotdesc.mesh.errors import MeshError, MeshErrorKind
 from robotdesc.mesh.properties import MassProperties
@@ -90,7 +90,7 @@ class MeshCache:
         # abspath, not realpath: the stamp (with the inode) identifies the file, and
         # resolving symlinks would cost a stat per path component on every warm run.
         path_key = hashlib.sha256(os.path.abspath(path).encode()).hexdigest()
-        index_file = _shard(self._stats, path_key)
+        index_file = entry_file(self._stats, path_key)
         known = _read_json(index_file)
         if isinstance(known, dict) and known.get("key") == path_key \
                 and known.get("stamp") == stamp and isinstance(stored := known.get("digest"), str):
@@ -102,7 +102,7 @@ class MeshCache:
 
     def get(self, key: str, path: str = "") -> MeshSummary | MeshError | None:
         """The stored summary (or mesh error) for `key`, or None when absent or corrupt."""
-        data = _read_json(_shard(self._entries, key))
+        data = _read_json(entry_file(self._entries, key))
         if not isinstance(data, dict):
             return None
         if data.get("key") != key:
@@ -119,17 +119,17 @@ class MeshCache:
 
     def put(self, key: str, summary: MeshSummary) -> None:
         """Store a summary (atomically; a failed write is logged once, not raised)."""
-        self._write(_shard(self._entries, key),
+        self._write(entry_file(self._entries, key),
                     {"key": key, "summary": summary_to_json(summary)})
 
     def put_error(self, key: str, error: MeshError) -> None:
         """Store a mesh error that depends on the file's content alone."""
         if error.kind in _UNCACHED_ERRORS:
             return
-        self._write(_shard(self._entries, key),
+        self._write(entry_file(self._entries, key),
                     {"key": key, "error": {"kind": error.kind.value, "detail": error.detail}})
 
-    def _write(self, target: str, data: Any) -> None:
+    def _write(self, target: str | os.PathLike[str], data: Any) -> None:
         try:
             write_entry(target, json.dumps(data, separators=(",", ":")).encode("utf-8"))
         except OSError as error:
@@ -185,11 +185,7 @@ def _vec3(values: Sequence[Any]) -> tuple[float, float, float]:
     return (x, y, z)
 
 
-def _shard(root: str, digest: str) -> str:
-    return os.path.join(root, digest[:2], f"{digest}.json")
-
-
-def _read_json(path: str) -> Any:
+def _read_json(path: str | os.PathLike[str]) -> Any:
     data = read_entry(path, MAX_ENTRY_BYTES)
     if data is None:
         return None
