@@ -52,4 +52,17 @@ def file_stamp(path: str) -> FileStamp | None:
         return None
     if not stat.S_ISREG(info.st_mode):
         return None
+    return _stamp(info)
+
+
+def entry_stamp(path: str) -> FileStamp | None:
+    """The identity of a folder entry of any kind, a symlink's own (`lstat`), or None when
+    it is gone: a folder's changes when an entry is added, removed or renamed in it."""
+    try:
+        return _stamp(os.lstat(path))
+    except OSError:
+        return None
+
+
+def _stamp(info: os.stat_result) -> FileStamp:
     return (info.st_dev, info.st_ino, info.st_size, info.st_mtime_ns, info.st_ctime_ns)

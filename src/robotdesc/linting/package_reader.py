@@ -12,6 +12,7 @@ import os
 from collections.abc import Iterable, Iterator, Sequence
 
 from robotdesc.cache_dir import read_regular_file
+from robotdesc.digest import FileStamp, entry_stamp
 from robotdesc.expansion.packages import enclosing_package
 from robotdesc.rules.package_files import (
     CMAKE,
@@ -112,32 +113,24 @@ def _kind(relative: str) -> str | None:
     return None
 
 
-#: A folder's or file's state as `os.stat` gives it (size, modification and change times in
-#: ns, inode), None when it is gone.
-_State = tuple[int, int, int, int] | None
+#: A folder listed or a file read, and its identity then (`digest.entry_stamp`).
+_Seen = tuple[str, FileStamp | None]
 
 #: Package folder (real path) -> its files as last read, and the state of every folder
 #: listed and file read for them, each taken before it was listed or read: the variants of
 #: a description and an editor's saves read the same packages again, and are given the
 #: same files while none of those changed (a file added or removed changes its folder).
-_READ: dict[str, tuple[tuple[PackageFile, ...], tuple[tuple[str, _State], ...]]] = {}
+_READ: dict[str, tuple[tuple[PackageFile, ...], tuple[_Seen, ...]]] = {}
 _READ_PACKAGES = 64
-
-
-def _state(path: str) -> _State:
-    try:
-        info = os.stat(path, follow_symlinks=False)
-    except OSError:
-        return None
-    return (info.st_size, info.st_mtime_ns, info.st_ctime_ns, info.st_ino)
 
 
 def _package_files(root: str) -> tuple[PackageFile, ...]:
     """The files of the package at `root` (a real path) read for the rules."""
     remembered = _READ.get(root)
-    if remembered is not None and all(_state(path) == state for path, state in remembered[1]):
+    if remembered is not None and all(entry_stamp(path) == stamp
+                                      for path, stamp in remembered[1]):
         return remembered[0]
-    states: list[tuple[str, _State]] = []
+    states: list[_Seen] = []
     files = tuple(found for path, kind in _walk(root, states)
                   if (found := _read(path, kind)) is not None)
     if len(_READ) >= _READ_PACKAGES:
@@ -146,17 +139,17 @@ def _package_files(root: str) -> tuple[PackageFile, ...]:
     return files
 
 
-def _walk(root: str, states: list[tuple[str, _State]]) -> Iterator[tuple[str, str]]:
+def _walk(root: str, states: list[_Seen]) -> Iterator[tuple[str, str]]:
     """The files of the kinds read, in path order; `states` gets the state of each folder
     before it is listed and of each file before it is read."""
     count = 0
-    states.append((root, _state(root)))
+    states.append((root, entry_stamp(root)))
     for folder, dirs, files in os.walk(root):
         relative_folder = os.path.relpath(folder, root)
         depth = 0 if relative_folder == "." else relative_folder.count(os.sep) + 1
         candidates = sorted(d for d in dirs if not d.startswith(".") and d not in _SKIPPED_DIRS
                             and depth < MAX_DEPTH)
-        states.extend((path, _state(path)) for path in (os.path.join(folder, d)
+        states.extend((path, entry_stamp(path)) for path in (os.path.join(folder, d)
                                                          for d in candidates))
         dirs[:] = [d for d in candidates if not os.path.islink(os.path.join(folder, d))
                    and not os.path.isfile(os.path.join(folder, d, "package.xml"))]
@@ -169,7 +162,7 @@ def _walk(root: str, states: list[tuple[str, _State]]) -> Iterator[tuple[str, st
             if count > MAX_FILES:
                 log.debug("%s: more than %d files, the rest not read", root, MAX_FILES)
                 return
-            states.append((path, _state(path)))
+            states.append((path, entry_stamp(path)))
             yield path, kind
 
 
