@@ -9,7 +9,7 @@ import sys
 import pytest
 
 from robotdesc.expansion import exchange as exchange_module
-from robotdesc.expansion.exchange import _ANSWER_PIPE_BYTES, exchange
+from robotdesc.expansion.exchange import _ANSWER_PIPE_BYTES, _widen, exchange
 
 WRITER = ("import sys; data = sys.stdin.buffer.read(); "
           "sys.stdout.buffer.write(data * {times}); sys.stderr.write('note')")
@@ -32,7 +32,6 @@ def test_the_answer_pipe_is_widened_where_linux_allows() -> None:
     with open("/proc/sys/fs/pipe-max-size") as handle:
         if int(handle.read()) < _ANSWER_PIPE_BYTES:
             pytest.skip("pipes may not be that large here")
-    from robotdesc.expansion.exchange import _widen
 
     proc = subprocess.Popen([sys.executable, "-c", "pass"], stdout=subprocess.PIPE)
     try:

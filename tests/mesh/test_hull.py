@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from scipy.spatial import ConvexHull  # a dependency of robotdesc (collision); lint never imports it
 
 import robotdesc.mesh
 from robotdesc.mesh.hull import convex_hull_faces
@@ -26,8 +27,7 @@ def _properties(points: np.ndarray, faces: np.ndarray) -> MassProperties:
 
 
 def _qhull_properties(points: np.ndarray) -> MassProperties:
-    spatial = pytest.importorskip("scipy.spatial")
-    hull = spatial.ConvexHull(points)
+    hull = ConvexHull(points)
     soup = points[hull.simplices]
     normal = np.cross(soup[:, 1] - soup[:, 0], soup[:, 2] - soup[:, 0])
     inward = np.einsum("ij,ij->i", normal, hull.equations[:, :3]) < 0
