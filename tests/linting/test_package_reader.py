@@ -54,3 +54,18 @@ def test_a_changed_added_or_removed_file_is_read_again(tmp_path: Path) -> None:
     assert os.path.join("launch", "nested", "x.launch.py") not in _texts(root)  # another package
     (root / "launch" / "nested" / "package.xml").unlink()
     assert os.path.join("launch", "nested", "x.launch.py") in _texts(root)
+
+
+def test_a_file_replaced_by_a_symlink_after_a_read_is_not_followed(tmp_path: Path) -> None:
+    """The remembered read is no way around the walk's refusal of symlinks: a YAML file
+    swapped for a link to a secret is left out at the next read, not served or followed."""
+    root = _package(tmp_path)
+    secret = tmp_path / "secret.yaml"
+    secret.write_text("token: hunter2\n")
+    assert os.path.join("config", "controllers.yaml") in _texts(root)
+    target = root / "config" / "controllers.yaml"
+    target.unlink()
+    target.symlink_to(secret)
+    texts = _texts(root)
+    assert os.path.join("config", "controllers.yaml") not in texts
+    assert not any("hunter2" in text for text in texts.values())

@@ -80,11 +80,16 @@ def test_a_job_the_child_fails_on_or_leaves_is_summarized_here(tmp_path: Path) -
     assert answers[-1] is None or _same(answers[-1], _alone(jobs[-1]))
 
 
-def test_an_answer_the_child_does_not_write_ends_it(tmp_path: Path) -> None:
+@pytest.mark.parametrize("answer", [
+    b'{"job": 99, "summary": {}}',  # a job that does not exist
+    b'{"job": 0, "summary": {"method": "exact"}}',  # not a summary's shape
+    b'{"job": 0, "error": {"kind": "no-such-kind", "detail": "x"}}',
+])
+def test_an_answer_the_child_does_not_write_ends_it(tmp_path: Path, answer: bytes) -> None:
     jobs = _jobs(tmp_path)
     ahead = Prefetch(jobs, DEFAULT_LIMITS, summarize_file)
     try:
-        ahead._record(b'{"job": 99, "summary": {}}')  # what a broken child would write
+        ahead._record(answer)  # what a broken child would write
         assert ahead._fd < 0 and ahead._pid == 0  # ended and reaped
         assert all(_same(ahead.take(*job), _alone(job)) for job in jobs)  # all here
     finally:
