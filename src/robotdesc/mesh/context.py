@@ -187,16 +187,16 @@ class MeshContext:
         if self._ahead is not None or not can_fork() or not (
                 self._cache is None or self._cache.is_empty()):
             return
-        jobs: list[Job] = []
+        jobs: dict[Job, None] = {}  # in the order the rules will ask, each file once
         for _link, _kind, _index, _shape, ref in self.meshes():
             resolution = self.locator.locate(ref)
             if resolution.ok and resolution.path is not None:
                 job = (resolution.path, tuple(ref.scale))
                 if job not in jobs and _remembered(job[0], job[1], self._limits,
                                                    self._cache) is None:
-                    jobs.append(job)
+                    jobs[job] = None
         if len(jobs) >= MIN_JOBS:
-            self._ahead = Prefetch(jobs, self._limits, summarize_file)
+            self._ahead = Prefetch(list(jobs), self._limits, summarize_file)
 
     def close(self) -> None:
         """End the child `summarize_ahead` started, if any (summaries not taken yet are
