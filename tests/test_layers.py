@@ -21,7 +21,7 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "robotdesc"
 #: Each top-level module or package of robotdesc and its layer (lower imports nothing higher).
 LAYERS: dict[str, int] = {
     **dict.fromkeys(("_version", "code_stamp", "source", "errors", "diagnostics", "model",
-                     "spatial", "atomic", "output", "cache_dir", "digest", "xml_input", "xml_text", "progress",
+                     "spatial", "atomic", "output", "cache_dir", "digest", "xml_input", "xml_text", "progress", "forked",
                      "trust", "printable", "lazy"), 0),
     "expansion": 1, "edit": 1, "mesh": 2, "inertia": 3, "kinematics": 4, "srdf": 5, "collision": 6,
     "sim": 7, "rules": 8, "linting": 9, "config": 9, "report": 10, "view": 10, "commands": 11,

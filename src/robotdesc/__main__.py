@@ -26,10 +26,12 @@ def _end(code: int) -> None:
     done: the atexit handlers run (a worker started early is killed, logging flushed) and
     stdout and stderr are flushed. The teardown after that (every module's objects freed,
     one by one) is skipped with `os._exit`. A thread that is not a daemon (Python would
-    wait for it) gets the ordinary exit, with every object left frozen first (`gc.freeze`:
-    the collector does not walk the whole heap again while Python tears it down)."""
-    if any(thread is not threading.main_thread() and not thread.daemon and thread.is_alive()
-           for thread in threading.enumerate()):
+    wait for it), or a profiler or tracer (cProfile, coverage: they write their data at
+    exit), gets the ordinary exit, with every object left frozen first (`gc.freeze`: the
+    collector does not walk the whole heap again while Python tears it down)."""
+    if sys.getprofile() is not None or sys.gettrace() is not None or any(
+            thread is not threading.main_thread() and not thread.daemon and thread.is_alive()
+            for thread in threading.enumerate()):
         gc.freeze()
         sys.exit(code)
     atexit._run_exitfuncs()

@@ -13,7 +13,8 @@ import pytest
 
 from robotdesc.mesh.analyze import summarize_file
 from robotdesc.mesh.errors import DEFAULT_LIMITS, MeshError, MeshLimits
-from robotdesc.mesh.prefetch import Prefetch, can_fork
+from robotdesc.forked import can_fork
+from robotdesc.mesh.prefetch import Prefetch
 from robotdesc.mesh.records import MeshSummary
 
 from .builders import box_triangles, write_binary_stl
@@ -90,7 +91,7 @@ def test_an_answer_the_child_does_not_write_ends_it(tmp_path: Path, answer: byte
     ahead = Prefetch(jobs, DEFAULT_LIMITS, summarize_file)
     try:
         ahead._record(answer)  # what a broken child would write
-        assert ahead._fd < 0 and ahead._pid == 0  # ended and reaped
+        assert ahead._child is None  # ended and reaped
         assert all(_same(ahead.take(*job), _alone(job)) for job in jobs)  # all here
     finally:
         ahead.close()

@@ -28,7 +28,6 @@ import errno
 import functools
 import logging
 import os
-import signal
 import sys
 import sysconfig
 from collections.abc import Iterable
@@ -71,7 +70,6 @@ _FS_RIGHTS_BY_ABI = {1: (1 << 13) - 1, 2: (1 << 14) - 1, 3: (1 << 15) - 1, 4: (1
 _READ = FS_READ_FILE | FS_READ_DIR
 
 # --- prctl and capabilities ---------------------------------------------------------------
-_PR_SET_PDEATHSIG = 1
 _PR_CAPBSET_DROP = 24
 _PR_GET_SECCOMP = 21
 _PR_SET_NO_NEW_PRIVS = 38
@@ -277,15 +275,6 @@ def _capabilities() -> tuple[int, int]:
     effective = data[0].effective | (data[1].effective << 32)
     permitted = data[0].permitted | (data[1].permitted << 32)
     return effective, permitted
-
-
-def die_with_parent(parent_pid: int) -> None:
-    """Ask the kernel to SIGKILL this process when its parent ends (Linux; elsewhere the
-    parent's handlers alone end the worker). Ends at once if the parent is already gone."""
-    if _libc is not None:
-        _libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
-    if os.getppid() != parent_pid:
-        os._exit(1)
 
 
 def drop_privileges() -> None:

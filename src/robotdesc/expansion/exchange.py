@@ -23,7 +23,7 @@ import subprocess
 import sys
 import threading
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from types import FrameType
 from typing import IO
@@ -70,16 +70,19 @@ class Exchanged:
 
 
 def exchange(proc: subprocess.Popen[bytes], job: bytes, timeout_s: float,
-             answer_cap: int) -> Exchanged:
+             answer_cap: int, while_waiting: Callable[[], object] | None = None) -> Exchanged:
     """Send `job` on the worker's stdin, collect stdout/stderr until it exits.
 
     Args:
-        timeout_s: wall-clock seconds before the worker's group is killed.
+        timeout_s: wall-clock seconds the worker may take before its group is killed.
         answer_cap: the most bytes of stdout kept before the worker is killed.
+        while_waiting: called once the whole job is sent, in this thread, while the worker
+            works (this process has nothing else to do then); the time it takes is not the
+            worker's (the deadline moves by it).
     """
     assert proc.stdin is not None and proc.stdout is not None and proc.stderr is not None
     with _short_switch_interval():
-        return _exchange(proc, job, timeout_s, answer_cap)
+        return _exchange(proc, job, timeout_s, answer_cap, while_waiting)
 
 
 #: [the interval to restore, how many exchanges run] while any runs (threads of a server).
@@ -107,7 +110,7 @@ def _short_switch_interval() -> Iterator[None]:
 
 
 def _exchange(proc: subprocess.Popen[bytes], job: bytes, timeout_s: float,
-              answer_cap: int) -> Exchanged:
+              answer_cap: int, while_waiting: Callable[[], object] | None) -> Exchanged:
     assert proc.stdin is not None and proc.stdout is not None and proc.stderr is not None
     deadline = time.monotonic() + timeout_s
     out: list[bytes] = []
@@ -136,6 +139,10 @@ def _exchange(proc: subprocess.Popen[bytes], job: bytes, timeout_s: float,
                     if not pending:
                         selector.unregister(proc.stdin)
                         proc.stdin.close()
+                        if while_waiting is not None:
+                            began = time.monotonic()
+                            while_waiting()
+                            deadline += time.monotonic() - began
                     continue
                 fd = key.fileobj.fileno()  # type: ignore[union-attr]
                 chunk = os.read(fd, _ANSWER_PIPE_BYTES if key.fileobj is proc.stdout else _CHUNK)

@@ -121,15 +121,16 @@ def _read_checked(path: Path) -> bytes:
 
 def expand_file(path: str | Path, args: Mapping[str, str] | None = None, *,
                 options: ExpandOptions | None = None,
-                on_worker_start: Callable[[], object] | None = None) -> Expanded:
+                while_expanding: Callable[[], object] | None = None) -> Expanded:
     """Expand a .xacro (in the worker) or read a plain .urdf.
 
     Args:
         path: the top-level description.
         args: xacro arguments (`name:=value` on the command line).
         options: resolution, sandbox, limits and cache settings.
-        on_worker_start: called once the worker process runs (not on a cache hit or for a
-            plain URDF): this process only waits for its answer from then on.
+        while_expanding: called once the worker has its job (not on a cache hit or for a
+            plain URDF), in this thread, while the worker expands: this process has nothing
+            else to do until its answer.
 
     Returns:
         The expanded document with provenance (see `Expanded`).
@@ -176,7 +177,7 @@ def expand_file(path: str | Path, args: Mapping[str, str] | None = None, *,
     limits = WorkerLimits(options.timeout_s, options.memory_mb, options.max_macro_depth)
     unpassed = () if options.trusted else tuple(n for n in os.environ if n not in env)
     expanded = run_worker(path, args, resolver, trusted=options.trusted, env=env, limits=limits,
-                          env_names=unpassed, on_start=on_worker_start)
+                          env_names=unpassed, while_waiting=while_expanding)
     _log_packages(expanded)
     if key is not None and cache_root is not None:
         cache.store(cache_root, key, expanded)

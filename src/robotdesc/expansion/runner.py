@@ -71,13 +71,14 @@ def require_confinement(path: Path) -> None:
 def run_worker(path: Path, args: dict[str, str], resolver: PackageResolverConfig, *,
                trusted: bool, env: dict[str, str], limits: WorkerLimits,
                env_names: tuple[str, ...] = (),
-               on_start: Callable[[], object] | None = None) -> Expanded:
+               while_waiting: Callable[[], object] | None = None) -> Expanded:
     """Expand `path` in a worker process (confined by the OS unless `trusted`).
 
     Args:
         env_names: names (never values) of variables set in the caller's environment,
             so that the worker can say which one was not passed.
-        on_start: called once the worker process runs (this process then only waits).
+        while_waiting: called once the worker has its job, in this thread, while it expands
+            (this process then only waits for its answer).
 
     Raises:
         InputError subclasses: the file could not be expanded (with file:line when known).
@@ -102,10 +103,8 @@ def run_worker(path: Path, args: dict[str, str], resolver: PackageResolverConfig
         except OSError as exc:
             raise errors.RobotdescError(f"cannot start the xacro worker: {exc}") from exc
     with worker_group(proc):
-        if on_start is not None:
-            on_start()
         exchanged = exchange(proc, json.dumps(job).encode(), limits.timeout_s,
-                             answer_cap(limits.max_output_bytes))
+                             answer_cap(limits.max_output_bytes), while_waiting)
     launch.start_next()
     if exchanged.timed_out:
         raise errors.LimitExceeded(

@@ -29,6 +29,7 @@ import yaml  # noqa: F401 -- xacro.load_yaml imports it lazily
 from robotdesc.expansion import confine, hooks, sandbox
 from robotdesc.expansion.packages import PackageResolver, PackageResolverConfig
 from robotdesc.expansion.result import ResolvedPackage
+from robotdesc.forked import die_with_parent
 
 if TYPE_CHECKING:
     from typing import TypedDict
@@ -275,7 +276,7 @@ def main(parent_pid: int | None = None) -> None:
             it ends (and at once if it has already gone).
     """
     if parent_pid is not None:
-        confine.die_with_parent(parent_pid)
+        die_with_parent(parent_pid)
     # what confining needs (libseccomp, found by two `ldconfig` runs) before the job arrives:
     # a worker started early waits for it (`robotdesc.expansion.launch`)
     confine.probe()

@@ -27,7 +27,8 @@ from robotdesc.model.tree import tree_problem
 if TYPE_CHECKING:
     from typing_extensions import Self  # typing.Self from Python 3.11
 
-__all__ = ["BuildProblem", "KinematicBuildError", "KinematicModel", "build_model", "explain"]
+__all__ = ["BuildProblem", "KinematicBuildError", "KinematicModel", "Refusal", "build_model", "build_urdf",
+           "explain", "unfit_for_pinocchio"]
 
 _NAMES = re.compile(r"\[([^\]]*)\]")
 _CAPTURE_LOCK = threading.Lock()
@@ -103,13 +104,47 @@ def build_model(robot: Robot, mesh_path: MeshPath = lambda mesh: None) -> Kinema
         KinematicsUnavailable: Pinocchio is not installed.
         KinematicBuildError: Pinocchio refused the model.
     """
-    pin = import_pinocchio("building the kinematic model")
-    broken = tree_problem(robot)
-    if broken is not None:  # refused here: urdfdom crashes on some of these
-        raise KinematicBuildError(BuildProblem(broken[0], broken[1], broken[2],
-                                               from_pinocchio=False))
+    import_pinocchio("building the kinematic model")
+    unfit = unfit_for_pinocchio(robot)
+    if unfit is not None:
+        raise KinematicBuildError(unfit)
     urdf = pinocchio_urdf(robot, mesh_path)
-    error, captured, model = None, "", None
+    model, refusal = build_urdf(urdf)
+    if refusal is not None:
+        raise KinematicBuildError(explain(robot, refusal.captured, refusal.error))
+    return KinematicModel(robot, model, urdf)
+
+
+def unfit_for_pinocchio(robot: Robot) -> BuildProblem | None:
+    """Why robotdesc refuses to give `robot` to Pinocchio at all (links that do not form one
+    tree: urdfdom crashes the process on some of these), or None."""
+    broken = tree_problem(robot)
+    if broken is None:
+        return None
+    return BuildProblem(broken[0], broken[1], broken[2], from_pinocchio=False)
+
+
+@dataclass(frozen=True)
+class Refusal:
+    """Pinocchio's refusal of a URDF text.
+
+    Attributes:
+        error: the text of the exception it raised.
+        captured: what urdfdom printed meanwhile (its reasons, on lines "Error: ...").
+    """
+
+    error: str
+    captured: str
+
+
+def build_urdf(urdf: str) -> tuple[Any, Refusal | None]:
+    """Pinocchio's model of a URDF text (fixed base), or None and its refusal.
+
+    Raises:
+        KinematicsUnavailable: Pinocchio is not installed.
+    """
+    pin = import_pinocchio("building the kinematic model")
+    error, model = None, None
     with _CAPTURE_LOCK:
         with _StderrCapture() as capture:
             try:
@@ -118,8 +153,8 @@ def build_model(robot: Robot, mesh_path: MeshPath = lambda mesh: None) -> Kinema
                 error = exc
         captured = capture.text
     if error is not None:
-        raise KinematicBuildError(explain(robot, captured, str(error)))
-    return KinematicModel(robot, model, urdf)
+        return None, Refusal(str(error), captured)
+    return model, None
 
 
 def explain(robot: Robot, captured: str, fallback: str) -> BuildProblem:

@@ -9,18 +9,23 @@ import dataclasses
 import fnmatch
 import logging
 import os
+import sys
 from collections.abc import Iterable, Mapping, Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING
 
 from robotdesc.cache_dir import cache_folder
 from robotdesc.config import Config, discover_config
 from robotdesc.diagnostics import Diagnostic, Finding, Severity
 from robotdesc.errors import RobotdescError, RuleCrashed
 from robotdesc.expansion import Expanded, ExpandOptions, expand_file
+from robotdesc.kinematics.optional import pinocchio_available
+from robotdesc.kinematics.verdict import Verdict, start_verdict
 from robotdesc.linting import rule_cache
 from robotdesc.linting.package_reader import named_controller_files, read_package_files
 from robotdesc.linting.result import LintResult
 from robotdesc.linting.suppress import Suppression, apply_suppressions, scan_files, unused_codes
-from robotdesc.linting.warmup import ImportsAhead, lint_imports
+from robotdesc.linting.warmup import VERDICT_ONLY, import_ahead, lint_imports, pinocchio_in_child
 from robotdesc.mesh.cache import MeshCache
 from robotdesc.mesh.context import MeshContext
 from robotdesc.mesh.resolve import PackageLookup
@@ -28,6 +33,9 @@ from robotdesc.model.elements import Robot
 from robotdesc.rules.registry import ExpansionFacts, Rule, RuleContext, SourceDocument, run_rule
 from robotdesc.rules.select import is_selected, select_rules
 from robotdesc.source import Provenance, Span
+
+if TYPE_CHECKING:
+    from _typeshed import DataclassInstance
 
 log = logging.getLogger(__name__)
 
@@ -67,18 +75,31 @@ def lint_file(path: str, config: Config | None = None, *,
     merged_args = {**dict(config.args), **dict(args or {})}
     options = dataclasses.replace(options, unchecked_args=tuple(
         name for name, _ in config.args if name not in (args or {})))
-    # while the worker expands, this process only waits: import what the lint needs meanwhile
-    ahead = ImportsAhead(lambda: lint_imports(
-        tuple(select) if select is not None else config.select,
-        tuple(config.ignore) + tuple(ignore),
-        analyze_meshes=_meshes_analyzed(config, options)))
+    chosen_select = tuple(select) if select is not None else config.select
+    chosen_ignore = tuple(config.ignore) + tuple(ignore)
+    verdicts: list[Verdict] = []
+
+    def while_expanding() -> None:  # this process has nothing else to do meanwhile
+        import_ahead(lint_imports(chosen_select, chosen_ignore,
+                                  analyze_meshes=_meshes_analyzed(config, options)))
+        from robotdesc.rules.catalog import all_rules
+
+        rules = select_rules(all_rules(), chosen_select, chosen_ignore)
+        if pinocchio_in_child(rules) and "pinocchio" not in sys.modules \
+                and pinocchio_available():
+            verdict = start_verdict()
+            if verdict is not None:
+                verdicts.append(verdict)
+
     try:
         expanded = expand_file(target, merged_args, options=options,
-                               on_worker_start=ahead.start)
+                               while_expanding=while_expanding)
+        return lint_expanded(target, expanded, config, options, select=select, ignore=ignore,
+                             find_package=find_package,
+                             verdict=verdicts[0] if verdicts else None)
     finally:
-        ahead.stop()
-    return lint_expanded(target, expanded, config, options, select=select, ignore=ignore,
-                         find_package=find_package)
+        for verdict in verdicts:
+            verdict.close()
 
 
 def _meshes_analyzed(config: Config, options: ExpandOptions) -> bool:
@@ -90,7 +111,8 @@ def _meshes_analyzed(config: Config, options: ExpandOptions) -> bool:
 
 def lint_expanded(target: str, expanded: Expanded, config: Config, options: ExpandOptions, *,
                   select: Sequence[str] | None = None, ignore: Sequence[str] = (),
-                  find_package: PackageLookup | None = None) -> LintResult:
+                  find_package: PackageLookup | None = None,
+                  verdict: Verdict | None = None) -> LintResult:
     """Lint an expansion of `target` (parse, rules, ignores, suppressions): `lint_file`
     after its expansion, also for a document the caller changed (the language server's
     edit of a literal value).
@@ -102,6 +124,8 @@ def lint_expanded(target: str, expanded: Expanded, config: Config, options: Expa
         options: the expansion settings it was made with (`package_map` with the config's
             packages: the meshes resolve through them).
         select, ignore, find_package: as `lint_file`.
+        verdict: a child started to decide Pinocchio's verdict (`lint_file`): given the
+            model when the rule cache does not hold the findings that need it.
 
     Raises:
         InputError: the document could not be parsed (exit code 2).
@@ -127,13 +151,16 @@ def lint_expanded(target: str, expanded: Expanded, config: Config, options: Expa
                                   named_controller_files(expanded.xml))
                if any("package" in rule.needs for rule in rules) else None)
     found: dict[str, list[Diagnostic]] = {}
+    if verdict is not None and _verdict_wanted(rules, robot, expanded, config, options):
+        verdict.submit(robot)  # decided beside the other rules, which take it last
+    elif verdict is not None:
+        verdict.close()
+        verdict = None
     if meshes is not None:
         meshes.summarize_ahead()
-    try:  # the rules that read no mesh first: meanwhile a child may summarize the meshes
-        for rule in sorted(rules, key=lambda rule: "meshes" in rule.needs):
-            configured = config.options_for(rule.code)
-            context = RuleContext(options=configured if configured is not None
-                                  else rule.default_options(), expansion=facts,
+    try:  # the rules that read no mesh first, those that take a child's verdict last
+        for rule in sorted(rules, key=lambda rule: _waits_for(rule, verdict)):
+            context = RuleContext(options=_rule_options(rule, config), expansion=facts,
                                   meshes=meshes if "meshes" in rule.needs else None,
                                   document=document if "document" in rule.needs else None,
                                   package=package if "package" in rule.needs else None)
@@ -149,6 +176,8 @@ def lint_expanded(target: str, expanded: Expanded, config: Config, options: Expa
     finally:
         if meshes is not None:
             meshes.close()
+        if verdict is not None:
+            verdict.close()
     diagnostics = [d for rule in rules for d in found[rule.code]]  # in the rules' order
 
     ignored = [d for d in diagnostics if _ignored_for_file(d, config)]
@@ -179,16 +208,51 @@ def _run_cached(rule: Rule, robot: Robot, context: RuleContext, expanded: Expand
     """Run one rule; the findings of expensive rules come from the rule cache when valid."""
     if not (options.use_cache and rule_cache.is_cached(rule)):
         return list(run_rule(rule, robot, context))
-
-    folder = cache_folder(options.use_cache, options.cache_dir)
-    key = rule_cache.rule_key(rule, context.options, expanded.xml, _mesh_files(context),
-                              source=robot.source or "")
-    sources = frozenset((expanded.source, *expanded.files, *expanded.files_read))
-    found = rule_cache.load(folder, key, sources)
+    folder, key, found = _cached(rule, context.options, robot, expanded, options,
+                                 _mesh_files(context))
     if found is None:
         found = list(run_rule(rule, robot, context))
         rule_cache.store(folder, key, found)
     return found
+
+
+def _cached(rule: Rule, rule_options: DataclassInstance | None, robot: Robot,
+            expanded: Expanded, options: ExpandOptions, mesh_files: Sequence[str]
+            ) -> tuple[Path | None, str, list[Finding] | None]:
+    """The rule cache's folder, the rule's key there, and its findings when stored."""
+    folder = cache_folder(options.use_cache, options.cache_dir)
+    key = rule_cache.rule_key(rule, rule_options, expanded.xml, mesh_files,
+                              source=robot.source or "")
+    sources = frozenset((expanded.source, *expanded.files, *expanded.files_read))
+    return folder, key, rule_cache.load(folder, key, sources)
+
+
+def _rule_options(rule: Rule, config: Config) -> DataclassInstance | None:
+    """The rule's options: the config's, else its defaults."""
+    configured: DataclassInstance | None = config.options_for(rule.code)
+    return configured if configured is not None else rule.default_options()
+
+
+def _waits_for(rule: Rule, verdict: Verdict | None) -> int:
+    """How late a rule runs: 0 for those that read no mesh, 1 for those that do (meanwhile a
+    forked child may summarize the meshes), 2 for those that take the verdict a child is
+    deciding (meanwhile it imports Pinocchio, if it has not yet)."""
+    if verdict is not None and "pinocchio" in rule.needs:
+        return 2
+    return 1 if "meshes" in rule.needs else 0
+
+
+def _verdict_wanted(rules: Sequence[Rule], robot: Robot, expanded: Expanded, config: Config,
+                    options: ExpandOptions) -> bool:
+    """Whether the model goes to the child that decides Pinocchio's verdict: the rules that
+    need Pinocchio need nothing else of it (`VERDICT_ONLY`), and the rule cache does not
+    hold all their findings already."""
+    users = [rule for rule in rules if "pinocchio" in rule.needs]
+    if not users or not all(rule.needs == VERDICT_ONLY for rule in users):
+        return False
+    return not options.use_cache or any(
+        _cached(rule, _rule_options(rule, config), robot, expanded, options, ())[2] is None
+        for rule in users)
 
 
 def _mesh_files(context: RuleContext) -> list[str]:

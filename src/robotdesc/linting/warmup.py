@@ -1,13 +1,12 @@
-"""The imports a lint needs after its expansion, done ahead in a background thread while the
-xacro worker expands (the parent only waits for the worker's answer then; with a core free
-the imports and the expansion overlap). The thread starts once the worker runs
-(`expand_file(on_worker_start=)`), so that it never delays the worker's start, and not at all
-when the expansion comes from its cache or the file is a plain URDF.
+"""What a cold lint does while the xacro worker expands (`expand_file(while_expanding=)`):
+it imports what the lint needs after the expansion (`import_ahead`, `lint_imports`), and
+where the rules need no more of Pinocchio than its verdict (`pinocchio_in_child`), it forks
+the child that imports Pinocchio and will decide on the model (`robotdesc.kinematics.verdict`).
+The worker has its job by then, so nothing here delays it; none of it happens when the
+expansion comes from its cache or the file is a plain URDF.
 
-`ImportsAhead` imports module after module until the caller stops it; `stop()` waits for the
-module being imported to finish, so that after it no import runs in two threads. An import
-that fails here is forgotten: the lint imports the module again where it needs it, and fails
-there exactly as it would have without this (Python does not keep a failed module).
+An import that fails here is forgotten: the lint imports the module again where it needs it,
+and fails there exactly as it would have without this (Python does not keep a failed module).
 """
 
 from __future__ import annotations
@@ -16,14 +15,17 @@ import importlib
 import importlib.util
 import logging
 import sys
-import threading
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 
-from robotdesc.mesh.prefetch import forks_here
+from robotdesc.forked import forks_here
+from robotdesc.kinematics.verdict import verdict_started
+from robotdesc.rules.registry import Rule
 from robotdesc.rules.select import select_rules
 
 log = logging.getLogger(__name__)
 
+#: The needs of a rule that asks Pinocchio only whether the model builds (K101).
+VERDICT_ONLY = frozenset({"pinocchio"})
 #: What the parse and the rules import (lxml with the model parser, every rule module).
 _ALWAYS = ("robotdesc.model.parse", "robotdesc.rules.catalog")
 #: What reading meshes imports: numpy and the readers, the summary (numpy.ma: np.unique).
@@ -36,44 +38,14 @@ _MESHES = ("robotdesc.mesh.summary", "numpy.ma")
 _MESH_ANALYSIS = ("collada",)
 
 
-class ImportsAhead:
-    """Imports the modules `plan` yields, in a daemon thread, until `stop()`.
-
-    Args:
-        plan: yields module names; runs in the thread (it may import to decide).
-    """
-
-    def __init__(self, plan: Callable[[], Iterable[str]]) -> None:
-        self._plan = plan
-        self._stopped = threading.Event()
-        self._started = False
-        self._thread = threading.Thread(target=self._run, name="robotdesc-imports-ahead",
-                                        daemon=True)
-
-    def start(self) -> None:
-        """Start importing (once; nothing happens when no thread can be started)."""
-        if self._started:
-            return
-        self._started = True
-        try:
-            self._thread.start()
-        except RuntimeError as error:  # no thread to be had: the lint imports as it goes
-            log.debug("not importing ahead: %s", error)
-
-    def stop(self) -> None:
-        """Import nothing more, and wait for the module being imported."""
-        self._stopped.set()
-        if self._thread.is_alive():
-            self._thread.join()
-
-    def _run(self) -> None:
-        try:
-            for name in self._plan():
-                if self._stopped.is_set():
-                    return
-                _import(name)
-        except Exception as error:  # a plan that fails: the lint decides again itself
-            log.debug("importing ahead stopped: %s: %s", type(error).__name__, error)
+def import_ahead(plan: Iterable[str]) -> None:
+    """Import the modules `plan` yields (it may import to decide); a plan or an import that
+    fails is only logged."""
+    try:
+        for name in plan:
+            _import(name)
+    except Exception as error:  # a plan that fails: the lint decides again itself
+        log.debug("importing ahead stopped: %s: %s", type(error).__name__, error)
 
 
 def _import(name: str) -> None:
@@ -100,10 +72,22 @@ def lint_imports(select: Sequence[str] | None, ignore: Sequence[str],
     yield from _ALWAYS
     from robotdesc.rules.catalog import all_rules
 
-    needs = {need for rule in select_rules(all_rules(), select, ignore) for need in rule.needs}
+    rules = select_rules(all_rules(), select, ignore)
+    needs = {need for rule in rules for need in rule.needs}
     if "meshes" in needs:
         yield from _MESHES
-    if "pinocchio" in needs:
+    if "pinocchio" in needs and not pinocchio_in_child(rules):
         yield "pinocchio"
     if "meshes" in needs and analyze_meshes and not forks_here():
         yield from _MESH_ANALYSIS  # else the child that shares the summaries imports them
+
+
+def pinocchio_in_child(rules: Iterable[Rule]) -> bool:
+    """Whether the rules' use of Pinocchio is decided by a forked child
+    (`robotdesc.kinematics.verdict`): every selected rule that needs Pinocchio needs nothing
+    else (it asks only whether the model builds: K101), this platform forks, and this
+    process has not asked a child before (several targets in one process import Pinocchio
+    once, here). This process then imports no Pinocchio."""
+    users = [rule for rule in rules if "pinocchio" in rule.needs]
+    return bool(users) and all(rule.needs == VERDICT_ONLY for rule in users) \
+        and forks_here() and not verdict_started()

@@ -21,11 +21,12 @@ from dataclasses import dataclass
 
 from robotdesc.cache_dir import cache_folder
 from robotdesc.expansion.packages import package_lookup
+from robotdesc.forked import can_fork
 from robotdesc.mesh.analyze import analyze_mesh_file, summarize_file
 from robotdesc.mesh.cache import MeshCache
 from robotdesc.mesh.errors import DEFAULT_LIMITS, MeshError, MeshLimits
 from robotdesc.mesh.locate import MeshLocator
-from robotdesc.mesh.prefetch import MIN_JOBS, Job, Prefetch, can_fork
+from robotdesc.mesh.prefetch import MIN_JOBS, Job, Prefetch
 from robotdesc.mesh.primitives import primitive_properties
 from robotdesc.mesh.properties import MassProperties, Vec3, combine, moved_bounds
 from robotdesc.mesh.records import MassMethod, MeshSummary

@@ -10,11 +10,9 @@ a job (`take`), summarizes it itself when nobody claimed it, and while the child
 takes the smallest unclaimed jobs meanwhile. Two claims at the same moment only mean a file
 summarized twice. The child is a fork of this process (numpy and the mesh readers are
 imported already); it writes one JSON line per summary on a pipe, as the mesh cache stores
-them (`summary_to_json`), then ends at once (`os._exit`); this process reads them as it reads
-a cache entry (`summary_from_json`: shapes checked). A job the child failed on, or left when
-it ended, is summarized here. Linux only, and only from a process with no other thread (a
-fork copies no other thread, and a lock another thread holds would stay held in the child:
-only threads that draw progress may run meanwhile).
+them (`summary_to_json`); this process reads them as it reads a cache entry
+(`summary_from_json`: shapes checked). A job the child failed on, or left when it ended, is
+summarized here. The fork, and when one is allowed (`can_fork`), are `robotdesc.forked`'s.
 """
 
 from __future__ import annotations
@@ -23,18 +21,17 @@ import json
 import logging
 import mmap
 import os
-import select
-import signal
 import sys
-import threading
 from collections.abc import Callable, Sequence
 
-from robotdesc.expansion.confine import die_with_parent
+from robotdesc.forked import Forked, write_all
 from robotdesc.mesh.cache import summary_from_json, summary_to_json
 from robotdesc.mesh.errors import MeshError, MeshErrorKind, MeshLimits
 from robotdesc.mesh.records import MeshSummary
 
 log = logging.getLogger(__name__)
+
+__all__ = ["MIN_JOBS", "Job", "Prefetch", "Summarize"]
 
 #: A file to summarize: (path, the `<mesh scale>` applied to it).
 Job = tuple[str, tuple[float, ...]]
@@ -49,26 +46,6 @@ _MAX_LINE = 1 << 20
 
 #: Who claimed a job, in the shared page.
 _FREE, _HERE, _CHILD = 0, 1, 2
-
-
-def forks_here() -> bool:
-    """Whether mesh summaries can be shared with a forked child on this platform (Linux)."""
-    return sys.platform.startswith("linux") and hasattr(os, "fork")
-
-
-def can_fork() -> bool:
-    """Whether this process may fork a child that runs Python now: `forks_here`, and no
-    other thread but those that draw progress (they run none of the code the child runs, so
-    no lock they hold can stop the child)."""
-    return forks_here() and all(
-        thread is threading.current_thread() or _draws_progress(thread)
-        for thread in threading.enumerate())
-
-
-def _draws_progress(thread: threading.Thread) -> bool:
-    """robotdesc's progress lines (`robotdesc.progress`) and rich's bar refresh."""
-    return thread.daemon and (thread.name.startswith("robotdesc-progress-")
-                              or type(thread).__name__ == "_RefreshThread")
 
 
 class Prefetch:
@@ -87,8 +64,7 @@ class Prefetch:
         self._summarize = summarize
         self._answers: dict[int, MeshSummary | MeshError | None] = {}
         self._pending = b""
-        self._fd = -1
-        self._pid = 0
+        self._child: Forked | None = None
         self._claims = mmap.mmap(-1, max(1, len(jobs)))  # shared with the child after fork
         self._largest_first = _by_size(self._jobs)
         #: jobs only the child takes: COLLADA files while pycollada is not imported here
@@ -96,20 +72,10 @@ class Prefetch:
         self._reserved = frozenset(
             number for number, (path, _) in enumerate(self._jobs)
             if path.lower().endswith(".dae") and "collada" not in sys.modules)
-        read_end, write_end = os.pipe()
-        parent = os.getpid()
         try:
-            pid = os.fork()
+            self._child = Forked(self._serve)
         except OSError as error:
-            os.close(read_end)
-            os.close(write_end)
             log.debug("mesh summaries not computed in a second process: %s", error)
-            return
-        if pid == 0:  # the child: never returns
-            os.close(read_end)
-            self._serve(write_end, parent)
-        os.close(write_end)
-        self._pid, self._fd = pid, read_end
 
     def take(self, path: str, scale: Sequence[float]) -> MeshSummary | MeshError | None:
         """The summary of a file (or why it cannot be used as a mesh); None when it is not
@@ -119,7 +85,7 @@ class Prefetch:
             return None
         if number not in self._answers and self._claim(number):
             self._answers[number] = self._here(number)
-        while number not in self._answers and self._fd >= 0:
+        while number not in self._answers and self._running():
             self._read(wait=False)
             if number in self._answers:
                 break
@@ -132,28 +98,21 @@ class Prefetch:
 
     def close(self) -> None:
         """End the child (when it still runs) and reap it."""
-        if self._fd >= 0:
-            os.close(self._fd)
-            self._fd = -1
-        if self._pid:
-            try:
-                os.kill(self._pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
-            try:
-                os.waitpid(self._pid, 0)
-            except ChildProcessError:
-                pass
-            self._pid = 0
+        if self._child is not None:
+            self._child.close()
+            self._child = None
 
     def __del__(self) -> None:
         self.close()
+
+    def _running(self) -> bool:
+        return self._child is not None and self._child.running
 
     # --- this process -------------------------------------------------------------------
 
     def _claim(self, number: int) -> bool:
         """Claim a job for this process: False when the child has it (and still runs)."""
-        if (self._claims[number] == _CHILD or number in self._reserved) and self._fd >= 0:
+        if (self._claims[number] == _CHILD or number in self._reserved) and self._running():
             return False
         self._claims[number] = _HERE
         return True
@@ -176,12 +135,11 @@ class Prefetch:
 
     def _read(self, wait: bool) -> None:
         """Take in the child's answers written so far (`wait`: at least one more)."""
-        if self._fd < 0:
+        if self._child is None:
             return
-        ready, _, _ = select.select([self._fd], [], [], None if wait else 0)
-        if not ready:
+        chunk = self._child.read(wait)
+        if chunk is None:
             return
-        chunk = os.read(self._fd, 1 << 16)
         if not chunk or len(self._pending) + len(chunk) > _MAX_LINE:
             self.close()  # the child ended (or wrote what it does not write)
             return
@@ -211,33 +169,23 @@ class Prefetch:
 
     # --- the child ----------------------------------------------------------------------
 
-    def _serve(self, out: int, parent: int) -> None:
-        """Summarize each free job, largest first, one JSON line each; end without
-        cleanup (nothing of this process's state is flushed or torn down twice)."""
-        try:
-            die_with_parent(parent)
-            signal.signal(signal.SIGINT, signal.SIG_DFL)
-            signal.signal(signal.SIGTERM, signal.SIG_DFL)
-            reserved_first = sorted(self._reserved) + [
-                number for number in self._largest_first if number not in self._reserved]
-            for number in reserved_first:
-                if self._claims[number] != _FREE:
-                    continue
-                self._claims[number] = _CHILD
-                path, scale = self._jobs[number]
-                record: dict[str, object] = {"job": number}
-                try:
-                    record["summary"] = summary_to_json(
-                        self._summarize(path, scale, self._limits))
-                except MeshError as error:
-                    record["error"] = {"kind": error.kind.value, "detail": error.detail}
-                except Exception:  # noqa: BLE001 -- summarized again by the parent
-                    record["failed"] = True
-                data = (json.dumps(record, separators=(",", ":")) + "\n").encode()
-                while data:
-                    data = data[os.write(out, data):]
-        finally:  # whatever happened: the parent reads the end and does the rest
-            os._exit(0)
+    def _serve(self, _inbox: int, out: int) -> None:
+        """Summarize each free job, largest first, one JSON line each (runs in the child)."""
+        reserved_first = sorted(self._reserved) + [
+            number for number in self._largest_first if number not in self._reserved]
+        for number in reserved_first:
+            if self._claims[number] != _FREE:
+                continue
+            self._claims[number] = _CHILD
+            path, scale = self._jobs[number]
+            record: dict[str, object] = {"job": number}
+            try:
+                record["summary"] = summary_to_json(self._summarize(path, scale, self._limits))
+            except MeshError as error:
+                record["error"] = {"kind": error.kind.value, "detail": error.detail}
+            except Exception:  # noqa: BLE001 -- summarized again by the parent
+                record["failed"] = True
+            write_all(out, (json.dumps(record, separators=(",", ":")) + "\n").encode())
 
 
 def _by_size(jobs: Sequence[Job]) -> list[int]:

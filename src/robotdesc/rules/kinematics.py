@@ -13,10 +13,10 @@ from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 
 from robotdesc.diagnostics import Finding, Severity
-from robotdesc.kinematics.build import KinematicBuildError, build_model
 from robotdesc.kinematics.configuration import joint_range, zero_configuration
 from robotdesc.kinematics.mirror import mirror_pairs
 from robotdesc.kinematics.optional import pinocchio_or_note
+from robotdesc.kinematics.verdict import build_problem
 from robotdesc.model import tree
 from robotdesc.model.elements import Joint, Robot
 from robotdesc.rules.registry import RuleContext, rule
@@ -64,14 +64,12 @@ def pinocchio_cannot_build(robot: Robot, ctx: RuleContext) -> Iterator[Finding]:
     if robot.value_issues or not pinocchio_or_note("K101"):
         return  # unreadable values are S110's; Pinocchio would refuse them too
 
-    try:
-        build_model(robot)
-    except KinematicBuildError as error:
-        problem = error.problem
-        if not problem.from_pinocchio or any(pattern.search(problem.reason) for pattern, _ in _EXPLAINED):
-            return
-        yield Finding(f"Pinocchio cannot build the model: {problem.reason}",
-                      problem.where or robot.where, problem.element or f"robot:{robot.name}")
+    problem = build_problem(robot)  # a forked child's verdict when the lint started one
+    if problem is None or not problem.from_pinocchio \
+            or any(pattern.search(problem.reason) for pattern, _ in _EXPLAINED):
+        return
+    yield Finding(f"Pinocchio cannot build the model: {problem.reason}",
+                  problem.where or robot.where, problem.element or f"robot:{robot.name}")
 
 
 @rule("K102", "zero-configuration-outside-limits", family=FAMILY, severity=Severity.WARNING,
