@@ -14,6 +14,7 @@ thread holds would stay held in the child).
 from __future__ import annotations
 
 import ctypes
+import gc
 import logging
 import os
 import select
@@ -72,7 +73,9 @@ class Forked:
     The child ends with `os._exit(0)` when `work` returns or raises (nothing of this
     process's state is flushed or torn down twice), and when this process ends. This
     process's stdout and stderr are flushed before the fork; the child closes its copies of
-    the pipes of this process's other children (so that each sees the end of its inbox).
+    the pipes of this process's other children (so that each sees the end of its inbox), and
+    never collects garbage (it is short-lived, and a collection would touch every object it
+    shares with this process, copying their pages).
 
     Raises:
         OSError: no child could be forked.
@@ -98,6 +101,7 @@ class Forked:
                 for fd in (inbox_write, out_read, *_PARENT_ENDS):
                     os.close(fd)
                 _PARENT_ENDS.clear()
+                gc.disable()  # a collection would write to every object's page: copies
                 die_with_parent(parent)
                 signal.signal(signal.SIGINT, signal.SIG_DFL)
                 signal.signal(signal.SIGTERM, signal.SIG_DFL)

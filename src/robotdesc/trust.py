@@ -9,20 +9,44 @@ inside a tree, and which folders are never granted as a whole (see docs/security
 from __future__ import annotations
 
 import os
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 
 
-def real_within(path: str, roots: Iterable[str]) -> bool:
+def real_within(path: str, roots: Iterable[str],
+                real_path: Callable[[str], str] = os.path.realpath) -> bool:
     """True when the real path of `path` lies inside one of the (real) `roots`.
 
     A path whose real path cannot be found (a `/proc/1/cwd` link the kernel will not
     resolve for this process, a name too long) is not within anything: never an error.
+    `real_path`: how to find it (`RealPaths`, for many paths at once).
     """
     try:
-        real = os.path.realpath(path)
+        real = real_path(path)
     except (OSError, ValueError):
         return False
     return any(real == root or real.startswith(root.rstrip(os.sep) + os.sep) for root in roots)
+
+
+class RealPaths:
+    """`os.path.realpath` for many paths at one moment, each folder resolved once (a
+    description's files share a few folders; realpath looks at every component of every
+    path): the folder's real path, joined with the last component unless that one is a
+    symlink, which is resolved whole. Paths whose last component is empty, "." or ".."
+    are resolved whole too. Use one for one check, then drop it: a folder's real path is
+    not looked at again."""
+
+    def __init__(self) -> None:
+        self._folders: dict[str, str] = {}
+
+    def __call__(self, path: str) -> str:
+        folder, name = os.path.split(path)
+        if not folder or name in ("", ".", ".."):
+            return os.path.realpath(path)
+        real_folder = self._folders.get(folder)
+        if real_folder is None:
+            real_folder = self._folders[folder] = os.path.realpath(folder)
+        joined = os.path.join(real_folder, name)
+        return os.path.realpath(joined) if os.path.islink(joined) else joined
 
 
 def _homes() -> set[str]:

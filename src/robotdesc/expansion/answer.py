@@ -18,15 +18,15 @@ from __future__ import annotations
 import os
 import re
 import stat
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 
 from robotdesc import errors
 from robotdesc.expansion.result import EnvDefault, Expanded, MacroRecursion, ResolvedPackage
 from robotdesc.expansion.roots import Roots
-from robotdesc.expansion.sandbox import is_within
 from robotdesc.printable import printable
 from robotdesc.source import PASSED_SEPARATOR, PROVENANCE_ATTR, Span
+from robotdesc.trust import RealPaths, real_within
 
 #: Longest message, name or path taken from an answer (characters).
 MAX_TEXT = 8192
@@ -153,15 +153,16 @@ def parse_expanded(answer: dict[str, object], top: Path, args: dict[str, str],
         env_defaults=env_defaults)
 
 
-def justified(name: str, roots: tuple[str, ...]) -> bool:
+def justified(name: str, roots: tuple[str, ...],
+              real_path: Callable[[str], str] = os.path.realpath) -> bool:
     """True when the parent itself can vouch for `name` as part of the description: an
     absolute path whose real path lies inside `roots` and is a regular file (or xacro's
-    `<string>`)."""
+    `<string>`). `real_path`: as `robotdesc.trust.real_within` takes it."""
     if name == _INLINE:
         return True
     if not os.path.isabs(name) or "\x00" in name:
         return False
-    if not is_within(name, roots):
+    if not real_within(name, roots, real_path):
         return False
     try:
         return stat.S_ISREG(os.stat(name).st_mode)
@@ -175,8 +176,9 @@ def check_paths(paths: Iterable[str], roots: Roots, top: Path) -> None:
     Raises:
         InvalidAnswer: a path outside the data roots, not a regular file, or not absolute.
     """
+    real_path = RealPaths()  # the answer's files share a few folders: each resolved once
     for name in dict.fromkeys(paths):
-        if not justified(name, roots.data):
+        if not justified(name, roots.data, real_path):
             raise invalid(top, "it names a file outside the packages in use")
 
 

@@ -28,8 +28,8 @@ log = logging.getLogger(__name__)
 VERDICT_ONLY = frozenset({"pinocchio"})
 #: What the parse and the rules import (lxml with the model parser, every rule module).
 _ALWAYS = ("robotdesc.model.parse", "robotdesc.rules.catalog")
-#: What reading meshes imports: numpy and the readers, the summary (numpy.ma: np.unique).
-_MESHES = ("robotdesc.mesh.summary", "numpy.ma")
+#: What reading meshes imports: numpy and the readers, the summary.
+_MESHES = ("robotdesc.mesh.summary",)
 #: What summarizing meshes may import when the summaries are computed (no mesh cache, or an
 #: empty one): pycollada for .dae files; last, since it may not be needed at all, and not
 #: where a forked child shares the summaries (`robotdesc.mesh.prefetch`: the COLLADA files

@@ -17,6 +17,7 @@ import numpy as np
 
 from robotdesc.mesh.mass import bounds
 from robotdesc.mesh.records import MeshHealth
+from robotdesc.mesh.unique import unique, unique_inverse
 
 __all__ = ["MeshHealth", "Topology", "hole_caps", "merge_tolerance", "merge_vertices",
            "mesh_health",
@@ -85,7 +86,7 @@ def _merge_close_rims(topo: Topology, tolerance: float
     """(vertices, faces) with rim vertices within `tolerance` of each other merged, or None
     when no two are that close."""
     single = topo.edge_uses == 1
-    rim = np.unique(np.concatenate((topo.edge_low[single], topo.edge_high[single])))
+    rim = unique(np.concatenate((topo.edge_low[single], topo.edge_high[single])))
     if tolerance <= 0 or len(rim) < 2:
         return None
     pairs = _close_pairs(topo.vertices[rim], tolerance)
@@ -96,7 +97,7 @@ def _merge_close_rims(topo: Topology, tolerance: float
     np.minimum.at(first, labels, np.arange(len(rim)))
     representative = np.arange(len(topo.vertices))
     representative[rim] = rim[first[labels]]
-    kept, remap = np.unique(representative, return_inverse=True)
+    kept, remap = unique_inverse(representative)
     return topo.vertices[kept], remap[topo.faces]
 
 
@@ -160,7 +161,7 @@ def hole_caps(topo: Topology) -> np.ndarray:
     if len(a) == 0:
         return np.zeros((0, 3, 3))
     labels = _loop_labels(a, b, len(topo.vertices))
-    _, loop = np.unique(labels[a], return_inverse=True)
+    _, loop = unique_inverse(labels[a])
     weights = np.bincount(loop)
     # float: weighted counts (numpy's stubs type every bincount as integer)
     centroid: np.ndarray = np.stack([np.bincount(loop, topo.vertices[a][:, k]) for k in range(3)],
@@ -334,7 +335,7 @@ def _count_loops(topo: Topology) -> int:
     if len(a) == 0:
         return 0
     labels = _loop_labels(a, b, len(topo.vertices))
-    return len(np.unique(labels[a]))
+    return len(unique(labels[a]))
 
 
 def _row_hashes(rows: np.ndarray, chunk: int = 1 << 16) -> np.ndarray:

@@ -32,6 +32,8 @@ from collections.abc import Callable
 
 import numpy as np
 
+from robotdesc.mesh.unique import unique
+
 __all__ = ["RELATIVE_TOLERANCE", "convex_hull_faces"]
 
 log = logging.getLogger(__name__)
@@ -98,9 +100,9 @@ def _extreme_points(points: np.ndarray) -> np.ndarray:
     for start in range(0, len(points), _BLOCK):  # a block's extremes, then the best of them
         along = _heights(_DIRECTIONS, level, points[start:start + _BLOCK])
         found += [along.argmin(axis=1) + start, along.argmax(axis=1) + start]
-    candidates = np.unique(np.concatenate(found))
+    candidates = unique(np.concatenate(found))
     along = _heights(_DIRECTIONS, level, points[candidates])
-    return np.unique(candidates[np.concatenate([along.argmin(axis=1), along.argmax(axis=1)])])
+    return unique(candidates[np.concatenate([along.argmin(axis=1), along.argmax(axis=1)])])
 
 
 def _heights(normals: np.ndarray, offsets: np.ndarray, points: np.ndarray) -> np.ndarray:
@@ -186,7 +188,7 @@ def _discs(count: int, owner: np.ndarray, corners: np.ndarray, rim_owner: np.nda
     """
     faces = np.bincount(owner, minlength=count)
     rim = np.bincount(rim_owner, minlength=count)
-    corner_keys = np.unique(owner.repeat(3) * n_points + corners.ravel())
+    corner_keys = unique(owner.repeat(3) * n_points + corners.ravel())
     vertices = np.bincount(corner_keys // n_points, minlength=count)
     disc: np.ndarray = 2 * vertices - (3 * faces + rim) + 2 * faces == 2
     return disc
@@ -357,7 +359,7 @@ class _Quickhull:
             front_c, front_f = front_c[front], front_f[front]
             steps += 1
             if steps == _PATCH_STEPS and len(front_c):
-                wide = np.unique(front_c)
+                wide = unique(front_c)
                 wide = wide[~self.walk_only[eye[wide]]]
                 if len(wide) and len(wide) * self.count <= _AT_ONCE:
                     at_once[wide] = True
