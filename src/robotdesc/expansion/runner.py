@@ -84,8 +84,6 @@ def run_worker(path: Path, args: dict[str, str], resolver: PackageResolverConfig
         InputError subclasses: the file could not be expanded (with file:line when known).
         RobotdescError: the worker failed in a way that is robotdesc's bug.
     """
-    if not trusted:
-        require_confinement(path)
     roots = worker_roots(path, resolver)
     job = {
         "file": str(path), "args": sorted(args.items()), "resolver": dataclasses.asdict(resolver),
@@ -102,9 +100,17 @@ def run_worker(path: Path, args: dict[str, str], resolver: PackageResolverConfig
             proc = launch.launch()
         except OSError as exc:
             raise errors.RobotdescError(f"cannot start the xacro worker: {exc}") from exc
+    def waiting() -> None:
+        # the worker confines itself before any xacro runs (else it answers why not): this
+        # only says why first, without delaying the job (the probe runs `ldconfig` twice)
+        if not trusted:
+            require_confinement(path)
+        if while_waiting is not None:
+            while_waiting()
+
     with worker_group(proc):
         exchanged = exchange(proc, json.dumps(job).encode(), limits.timeout_s,
-                             answer_cap(limits.max_output_bytes), while_waiting)
+                             answer_cap(limits.max_output_bytes), waiting)
     launch.start_next()
     if exchanged.timed_out:
         raise errors.LimitExceeded(
