@@ -100,8 +100,12 @@ def test_pinocchio_is_imported_ahead_only_where_no_child_decides(
         monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(warmup, "forks_here", lambda: True)
     monkeypatch.setattr(warmup, "verdict_started", lambda: False)
+    monkeypatch.setattr(warmup, "more_expected", lambda: False)
     assert "pinocchio" not in lint_imports(None, (), analyze_meshes=True)  # K101 only
     assert "pinocchio" in lint_imports(["K101", "K201"], (), analyze_meshes=True)  # K201: a model
+    monkeypatch.setattr(warmup, "more_expected", lambda: True)  # targets follow: here, once
+    assert "pinocchio" in lint_imports(None, (), analyze_meshes=True)
+    monkeypatch.setattr(warmup, "more_expected", lambda: False)
     monkeypatch.setattr(warmup, "verdict_started", lambda: True)  # a later target: here
     assert "pinocchio" in lint_imports(None, (), analyze_meshes=True)
     monkeypatch.setattr(warmup, "forks_here", lambda: False)

@@ -89,10 +89,15 @@ def expect_more(count: int) -> None:
     _MORE[:] = [os.getpid(), count]
 
 
+def more_expected() -> bool:
+    """Whether `expect_more` said that more expansions follow the current one here."""
+    return bool(_MORE) and _MORE[0] == os.getpid() and _MORE[1] > 0
+
+
 def start_next() -> None:
     """After an expansion: start the next one's worker now when `expect_more` said one
     follows (the worker of a target whose result turns out cached is killed at the end)."""
-    if _MORE and _MORE[0] == os.getpid() and _MORE[1] > 0:
+    if more_expected():
         _MORE[1] -= 1
         start_early()
 

@@ -17,6 +17,7 @@ import logging
 import sys
 from collections.abc import Iterable, Iterator, Sequence
 
+from robotdesc.expansion.launch import more_expected
 from robotdesc.forked import forks_here
 from robotdesc.kinematics.verdict import verdict_started
 from robotdesc.rules.registry import Rule
@@ -86,8 +87,9 @@ def pinocchio_in_child(rules: Iterable[Rule]) -> bool:
     """Whether the rules' use of Pinocchio is decided by a forked child
     (`robotdesc.kinematics.verdict`): every selected rule that needs Pinocchio needs nothing
     else (it asks only whether the model builds: K101), this platform forks, and this
-    process has not asked a child before (several targets in one process import Pinocchio
-    once, here). This process then imports no Pinocchio."""
+    process lints one xacro target (no child asked before, no more expansions expected:
+    several targets in one process import Pinocchio once, here). This process then imports
+    no Pinocchio."""
     users = [rule for rule in rules if "pinocchio" in rule.needs]
     return bool(users) and all(rule.needs == VERDICT_ONLY for rule in users) \
-        and forks_here() and not verdict_started()
+        and forks_here() and not verdict_started() and not more_expected()
