@@ -27,6 +27,12 @@ log = logging.getLogger(__name__)
 
 __all__ = ["Forked", "can_fork", "die_with_parent", "forks_here", "read_all", "write_all"]
 
+#: Seconds a child may use no CPU while this process waits for it before it is taken for
+#: stuck (a deadlock: a working child uses CPU; a child that waits for its inbox is not
+#: counted until it has been given it).
+STUCK_S = 30.0
+#: How often a waiting read looks at the child's CPU time (s).
+_POLL_S = 1.0
 #: prctl's option that sends a signal to this process when its parent ends (Linux).
 _PR_SET_PDEATHSIG = 1
 _libc = ctypes.CDLL(None, use_errno=True) if sys.platform.startswith("linux") else None
@@ -105,6 +111,7 @@ class Forked:
                 die_with_parent(parent)
                 signal.signal(signal.SIGINT, signal.SIG_DFL)
                 signal.signal(signal.SIGTERM, signal.SIG_DFL)
+                _quiet()
                 work(inbox_read, out_write)
             finally:
                 os._exit(0)
@@ -132,13 +139,27 @@ class Forked:
     def read(self, wait: bool, limit: int = 1 << 16) -> bytes | None:
         """What the child wrote since the last read, at most `limit` bytes: None when it
         wrote nothing yet (`wait`: wait until it writes or ends), b"" once it ended (or
-        when this side was closed)."""
+        when this side was closed). A child that waits for nothing and has used no CPU for
+        `STUCK_S` seconds while this process waits for it is stuck (it works, else): it is
+        ended, and read as ended (this process does the work itself)."""
         if self._fd < 0:
             return b""
-        ready, _, _ = select.select([self._fd], [], [], None if wait else 0)
-        if not ready:
-            return None
-        return os.read(self._fd, limit)
+        if not wait:
+            ready, _, _ = select.select([self._fd], [], [], 0)
+            return os.read(self._fd, limit) if ready else None
+        used, idle = _cpu_ticks(self._pid), 0.0
+        while True:
+            ready, _, _ = select.select([self._fd], [], [], _POLL_S)
+            if ready:
+                return os.read(self._fd, limit)
+            now = _cpu_ticks(self._pid)
+            idle = idle + _POLL_S if now == used and self._inbox < 0 else 0.0
+            used = now
+            if idle >= STUCK_S:
+                log.warning("a helper process of robotdesc (pid %d) made no progress for %g s: "
+                            "its work is done here instead", self._pid, STUCK_S)
+                self.close()
+                return b""
 
     def close(self) -> None:
         """End the child (when it still runs) and reap it."""
@@ -166,6 +187,24 @@ class Forked:
 
     def __del__(self) -> None:
         self.close()
+
+
+def _quiet() -> None:
+    """In a child: Python's own output goes nowhere and nothing is logged. The parent's
+    stdout and stderr objects are not touched again: a thread of the parent may have held
+    their locks at the fork, and the child has no such thread to release them."""
+    logging.disable(logging.CRITICAL)
+    sys.stdout = sys.stderr = open(os.devnull, "w")  # noqa: SIM115 -- until os._exit
+
+
+def _cpu_ticks(pid: int) -> int:
+    """CPU time (user + system, clock ticks) process `pid` has used; -1 when unknown."""
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as stat:
+            fields = stat.read().rsplit(b")", 1)[1].split()
+        return int(fields[11]) + int(fields[12])
+    except (OSError, IndexError, ValueError):
+        return -1
 
 
 def read_all(fd: int, limit: int) -> bytes | None:

@@ -74,6 +74,7 @@ class Prefetch:
             if path.lower().endswith(".dae") and "collada" not in sys.modules)
         try:
             self._child = Forked(self._serve)
+            self._child.send(b"")  # no input: the jobs came with the fork
         except OSError as error:
             log.debug("mesh summaries not computed in a second process: %s", error)
 
