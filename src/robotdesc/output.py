@@ -23,6 +23,7 @@ from dataclasses import dataclass
 
 from robotdesc.atomic import Data, write_atomically
 from robotdesc.errors import OutputError
+from robotdesc.trust import RealPaths
 
 
 @dataclass(frozen=True)
@@ -48,10 +49,11 @@ class RunInputs:
         """These inputs plus `paths` (None entries skipped), all described as `what`."""
         known = {item.path for item in self.items}
         extra = []
+        real_path = RealPaths()  # a description's files share a few folders
         for path in paths:
             if not path:
                 continue
-            real = os.path.realpath(os.fspath(path))
+            real = real_path(os.path.abspath(os.fspath(path)))
             if real not in known:
                 known.add(real)
                 extra.append(RunInput(real, what))
