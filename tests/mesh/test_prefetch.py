@@ -11,9 +11,9 @@ from pathlib import Path
 
 import pytest
 
+from robotdesc.forked import can_fork
 from robotdesc.mesh.analyze import summarize_file
 from robotdesc.mesh.errors import DEFAULT_LIMITS, MeshError, MeshLimits
-from robotdesc.forked import can_fork
 from robotdesc.mesh.prefetch import Prefetch
 from robotdesc.mesh.records import MeshSummary
 
