@@ -12,9 +12,9 @@ import time
 import pytest
 
 from robotdesc import forked
-from robotdesc.forked import Forked, can_fork, read_all, write_all
+from robotdesc.forked import Forked, forks_here, read_all, write_all
 
-pytestmark = pytest.mark.skipif(not can_fork(), reason="no fork here (or other threads run)")
+pytestmark = pytest.mark.skipif(not forks_here(), reason="no fork here")
 
 
 def _echo(inbox: int, out: int) -> None:

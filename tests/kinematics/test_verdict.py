@@ -11,12 +11,12 @@ import pytest
 pytest.importorskip("pinocchio")
 
 from kinematics.robots import ARM, robot
-from robotdesc.forked import can_fork
+from robotdesc.forked import forks_here
 from robotdesc.kinematics import verdict as verdicts
 from robotdesc.kinematics.build import KinematicBuildError, build_model
 from robotdesc.kinematics.verdict import Verdict, build_problem, start_verdict
 
-pytestmark = pytest.mark.skipif(not can_fork(), reason="no fork here (or other threads run)")
+pytestmark = pytest.mark.skipif(not forks_here(), reason="no fork here")
 
 KNEE = ('<robot name="r">\n<link name="a"/>\n<link name="b"/>\n'
         '<joint name="knee" type="revolute"><parent link="a"/><child link="b"/></joint>\n'
@@ -35,7 +35,8 @@ def _here(text: str) -> object:
 
 
 @pytest.mark.parametrize("text", [KNEE, ARM, LOOP])
-def test_the_childs_verdict_is_the_build_here(text: str) -> None:
+def test_the_childs_verdict_is_the_build_here(text: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(verdicts, "can_fork", lambda: True)  # a test run may hold threads
     model = robot(text, "knee.urdf")
     verdict = start_verdict()
     assert verdict is not None
@@ -75,3 +76,11 @@ def test_a_child_that_ends_early_or_is_given_nothing(monkeypatch: pytest.MonkeyP
     idle = Verdict()  # never given a model: closed without an answer
     assert idle.answer() is None
     idle.close()
+
+
+def test_no_child_where_this_process_may_not_fork(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(verdicts, "can_fork", lambda: False)
+    assert start_verdict() is None
+    model = robot(KNEE, "knee.urdf")
+    problem = build_problem(model)  # built here
+    assert problem is not None and problem.element == "joint:knee"
