@@ -126,3 +126,41 @@ def test_a_third_identical_lint_is_a_replay_that_imports_no_lint_module(
     _imported("lint", "-q", str(robot), env=env)  # from the result cache: recorded
     assert list((tmp_path / "cache" / "replay").rglob("*.json"))
     assert _offending(_imported("lint", "-q", str(robot), env=env), NOT_FOR_A_REPLAY) == []
+
+
+FRONT_PROBE = """
+import json, os, sys
+import robotdesc.expansion.runner as runner
+
+def sent(*args, **kwargs):  # the job is about to be sent: what has been imported by now
+    sys.stderr.write(json.dumps(sorted(sys.modules)))
+    sys.stderr.flush()
+    os._exit(0)
+
+runner.exchange = sent
+from robotdesc.cli import main
+main(sys.argv[1:])
+"""
+
+
+@pytest.mark.parametrize("how", ["flags", "config"])
+def test_a_selection_is_checked_without_the_rule_modules(tmp_path: Path, how: str) -> None:
+    """`--select`/`--ignore` and a config's selectors are checked against the rule index: a
+    cold lint imports the rule modules while the worker expands, not before its job."""
+    (tmp_path / "r.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="a"/></robot>')
+    words = ["lint", "--no-cache", str(tmp_path / "r.urdf.xacro")]
+    if how == "flags":
+        words += ["--select", "J,S,moving-link-without-inertial", "--ignore", "J101"]
+    else:
+        (tmp_path / "robotdesc.toml").write_text(
+            'select = ["J", "S1"]\nignore = ["J101"]\n[per-file-ignores]\n"*.xacro" = ["S2"]\n')
+    done = subprocess.run([sys.executable, "-c", FRONT_PROBE, *words], capture_output=True,
+                          text=True, cwd=tmp_path, env=dict(os.environ, PYTHONPATH=str(SRC)),
+                          check=False, timeout=60)
+    modules = json.loads(done.stderr.strip().splitlines()[-1])
+    assert "robotdesc.rules.catalog" not in modules, done.stderr[-2000:]
+    bad = subprocess.run([sys.executable, "-m", "robotdesc", *words[:3], "--select", "Q9"],
+                         capture_output=True, text=True, cwd=tmp_path, check=False,
+                         env=dict(os.environ, PYTHONPATH=str(SRC)), timeout=60)
+    assert bad.returncode == 2 and "no rule matches 'Q9'" in bad.stderr

@@ -14,7 +14,8 @@ from robotdesc.config.locate import Locator
 from robotdesc.config.schema import KEYS, Config, SimSettings, TargetSpec
 from robotdesc.diagnostics import Severity
 from robotdesc.mesh.settings import MeshSettings
-from robotdesc.rules.select import find_rule, unknown_selectors
+from robotdesc.rules.index import known_names
+from robotdesc.rules.select import Named, find_rule, unknown_selectors
 from robotdesc.trust import is_broad_folder, leaves_tree
 
 if TYPE_CHECKING:
@@ -42,11 +43,14 @@ def config_from_mapping(table: Mapping[str, Any], path: str, *, text: str = "",
     """
     where = Locator(path, text, prefix)
     table = {_snake(key): value for key, value in table.items()}
-    if rules is None and any(key in table for key in _NAMING_RULES):
+    if rules is None and any(key in table for key in _CONFIGURING_RULES):
         from robotdesc.rules.catalog import all_rules  # every rule module, lxml among them
 
         rules = all_rules()
-    known = list(rules or ())  # no key names a rule: the registry is not needed (warm lint)
+    known = list(rules or ())  # no key configures a rule: the registry is not needed
+    # selectors need codes and names only: the rule index has them (no rule module imported)
+    names: Sequence[Named] = known if rules is not None else (
+        known_names() if any(key in table for key in _SELECTING_RULES) else ())
 
     unknown = sorted(set(table) - set(KEYS))
     if unknown:
@@ -55,9 +59,9 @@ def config_from_mapping(table: Mapping[str, Any], path: str, *, text: str = "",
     select = table.get("select")
     return Config(
         path=path,
-        select=None if select is None else _selectors(select, "select", where, known),
-        ignore=_selectors(table.get("ignore", []), "ignore", where, known),
-        per_file_ignores=_per_file_ignores(table.get("per_file_ignores", {}), where, known),
+        select=None if select is None else _selectors(select, "select", where, names),
+        ignore=_selectors(table.get("ignore", []), "ignore", where, names),
+        per_file_ignores=_per_file_ignores(table.get("per_file_ignores", {}), where, names),
         rule_options=_rule_options(table.get("rules", {}), where, known),
         severity=_severities(table.get("severity", {}), where, known),
         fail_on=_severity_value(table.get("fail_on", "info"), "fail-on", where),
@@ -69,15 +73,18 @@ def config_from_mapping(table: Mapping[str, Any], path: str, *, text: str = "",
     )
 
 
-#: The keys whose values name rules (checked against the registry).
-_NAMING_RULES = ("select", "ignore", "per_file_ignores", "rules", "severity")
+#: The keys whose values select rules (checked against their codes and names).
+_SELECTING_RULES = ("select", "ignore", "per_file_ignores")
+#: The keys whose values configure rules (checked against the registry: options, codes).
+_CONFIGURING_RULES = ("rules", "severity")
 
 
 def _snake(key: str) -> str:
     return key.replace("-", "_")
 
 
-def _selectors(value: Any, key: str, where: Locator, rules: list[Rule]) -> tuple[str, ...]:
+def _selectors(value: Any, key: str, where: Locator, rules: Sequence[Named]
+               ) -> tuple[str, ...]:
     if isinstance(value, str):
         value = [value]
     if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
@@ -89,7 +96,7 @@ def _selectors(value: Any, key: str, where: Locator, rules: list[Rule]) -> tuple
 
 
 def _per_file_ignores(value: Any, where: Locator,
-                      rules: list[Rule]) -> tuple[tuple[str, tuple[str, ...]], ...]:
+                      rules: Sequence[Named]) -> tuple[tuple[str, tuple[str, ...]], ...]:
     if not isinstance(value, dict):
         raise where.error("per_file_ignores", "'per-file-ignores' must be a table "
                                               "of glob = [codes]")

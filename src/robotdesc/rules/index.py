@@ -13,7 +13,11 @@ from __future__ import annotations
 import hashlib
 import json
 import os
-from typing import NamedTuple
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, NamedTuple
+
+if TYPE_CHECKING:
+    from robotdesc.rules.registry import Rule
 
 INDEX_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "index.json")
 #: Bytes an index may have (it is a few hundred kB).
@@ -44,6 +48,25 @@ class RuleIndex(NamedTuple):
             return self.help[key.upper()]
         code = next((row[0] for row in self.rows if row[1] == key), None)
         return None if code is None else self.help[code]
+
+
+class RuleName(NamedTuple):
+    """A rule's code and kebab-case name, as selectors match them."""
+
+    code: str
+    name: str
+
+
+def known_names() -> Sequence[RuleName] | Sequence[Rule]:
+    """Every rule's code and name: from the shipped index while it is current (reading it
+    costs a few ms), else from the registry (every rule module imported, about 50-100 ms):
+    enough to check `--select`, `--ignore` and a config's selectors before a lint starts."""
+    index = read_index()
+    if index is not None:
+        return [RuleName(row[0], row[1]) for row in index.rows]
+    from robotdesc.rules.catalog import all_rules  # every rule module: only when stale
+
+    return all_rules()
 
 
 def sources_digest() -> str:

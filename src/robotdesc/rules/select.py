@@ -9,12 +9,23 @@ tie `ignore` wins. So `select = ["J"]` with `ignore = ["J1"]` runs J2xx only, an
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 from robotdesc.errors import UsageError
 
 if TYPE_CHECKING:
     from robotdesc.rules.registry import Rule
+
+
+class Named(Protocol):
+    """What a selector is matched against: a rule's code and kebab-case name (a `Rule`, or
+    a row of the rule index, `robotdesc.rules.index.known_names`)."""
+
+    @property
+    def code(self) -> str: ...
+
+    @property
+    def name(self) -> str: ...
 
 _EXACT = 1000  # specificity of a full code or a rule name
 
@@ -55,7 +66,7 @@ def select_rules(rules: Iterable[Rule], select: Sequence[str] | None,
             and (not r.opt_in or best_match(select or (), r.code, r.name) > 0)]
 
 
-def unknown_selectors(selectors: Iterable[str], rules: Iterable[Rule]) -> list[str]:
+def unknown_selectors(selectors: Iterable[str], rules: Iterable[Named]) -> list[str]:
     """The selectors that match none of `rules` ("ALL" always matches)."""
     known = list(rules)
     return [s for s in selectors
@@ -63,7 +74,7 @@ def unknown_selectors(selectors: Iterable[str], rules: Iterable[Rule]) -> list[s
                                                       for r in known)]
 
 
-def check_selectors(selectors: Iterable[str], rules: Iterable[Rule], flag: str) -> None:
+def check_selectors(selectors: Iterable[str], rules: Iterable[Named], flag: str) -> None:
     """Refuse a selector that matches none of `rules`, naming the option it came from.
 
     Raises:
