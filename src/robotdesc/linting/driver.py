@@ -151,18 +151,18 @@ def lint_expanded(target: str, expanded: Expanded, config: Config, options: Expa
     document = SourceDocument(expanded.xml, expanded.source, tuple(expanded.files))
 
     meshes = _mesh_context(rules, robot, target, config, options, find_package)
-    package = (read_package_files(target, tuple((p.name, p.path) for p in expanded.packages),
-                                  named_controller_files(expanded.xml))
-               if any("package" in rule.needs for rule in rules) else None)
     found: dict[str, list[Diagnostic]] = {}
+    if meshes is not None:
+        meshes.summarize_ahead()  # first: the longest work beside this process
     if verdict is not None and _verdict_wanted(rules, robot, expanded, config, options):
         verdict.submit(robot)  # decided beside the other rules, which take it last
     elif verdict is not None:
         verdict.close()
         verdict = None
-    if meshes is not None:
-        meshes.summarize_ahead()
     try:  # the rules that read no mesh first, those that take a child's verdict last
+        package = (read_package_files(target, tuple((p.name, p.path) for p in expanded.packages),
+                                      named_controller_files(expanded.xml))
+                   if any("package" in rule.needs for rule in rules) else None)
         for rule in sorted(rules, key=lambda rule: _waits_for(rule, verdict)):
             context = RuleContext(options=_rule_options(rule, config), expansion=facts,
                                   meshes=meshes if "meshes" in rule.needs else None,
