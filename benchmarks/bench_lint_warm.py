@@ -61,7 +61,7 @@ def wall_time(command: list[str], env: dict[str, str]) -> float:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--repeat", type=int, default=7)
-    parser.add_argument("--cold-repeat", type=int, default=9)  # a cold run varies most
+    parser.add_argument("--cold-repeat", type=int, default=7)  # at most --repeat; cold runs vary most
     parser.add_argument("--src", action="append", default=[])
     parser.add_argument("--corpus", type=Path, default=Path("/work/corpus"))
     options = parser.parse_args()
