@@ -14,7 +14,8 @@ import pytest
 from robotdesc import forked
 from robotdesc.forked import Forked, forks_here, read_all, write_all
 
-pytestmark = pytest.mark.skipif(not forks_here(), reason="no fork here")
+pytestmark = pytest.mark.skipif(not forks_here(),
+                                 reason="robotdesc forks helper processes on Linux only")
 
 
 def _echo(inbox: int, out: int) -> None:
@@ -22,19 +23,10 @@ def _echo(inbox: int, out: int) -> None:
     write_all(out, data.upper())
 
 
-def _read_to_end(child: Forked) -> bytes:
-    data = b""
-    while True:
-        chunk = child.read(wait=True)
-        if not chunk:
-            return data
-        data += chunk
-
-
 def test_the_child_reads_its_inbox_and_answers() -> None:
     child = Forked(_echo)
     child.send(b"pinocchio" * 10_000)
-    assert _read_to_end(child) == b"PINOCCHIO" * 10_000
+    assert child.read_to_end(1 << 20) == b"PINOCCHIO" * 10_000
     child.close()
     assert not child.running
 
@@ -48,7 +40,7 @@ def test_the_child_writes_nothing_to_this_process_and_logs_nothing(capfd) -> Non
 
     child = Forked(noisy)
     child.send(b"")
-    assert _read_to_end(child) == b"done"
+    assert child.read_to_end(1 << 20) == b"done"
     child.close()
     captured = capfd.readouterr()
     assert "child" not in captured.out + captured.err and "stderr" not in captured.err
@@ -77,16 +69,16 @@ def test_a_child_given_no_input_yet_is_not_stuck(monkeypatch: pytest.MonkeyPatch
     child = Forked(_echo)
     assert child.read(wait=False) is None
     child.send(b"late")
-    assert _read_to_end(child) == b"LATE"
+    assert child.read_to_end(1 << 20) == b"LATE"
     child.close()
 
 
 def test_each_child_sees_the_end_of_its_inbox_while_others_live() -> None:
     first, second = Forked(_echo), Forked(_echo)  # the second holds no copy of first's inbox
     first.send(b"a")
-    assert _read_to_end(first) == b"A"
+    assert first.read_to_end(1 << 20) == b"A"
     second.send(b"b")
-    assert _read_to_end(second) == b"B"
+    assert second.read_to_end(1 << 20) == b"B"
     first.close()
     second.close()
     assert not forked._PARENT_ENDS
@@ -96,3 +88,10 @@ def test_a_closed_child_reads_as_ended() -> None:
     child = Forked(_echo)
     child.close()
     assert child.read(wait=True) == b"" and os.getpid() > 0
+
+
+def test_an_answer_past_the_limit_is_none() -> None:
+    child = Forked(_echo)
+    child.send(b"x" * 5000)
+    assert child.read_to_end(1000) is None
+    child.close()

@@ -161,6 +161,18 @@ class Forked:
                 self.close()
                 return b""
 
+    def read_to_end(self, limit: int) -> bytes | None:
+        """Everything the child writes until it ends (`read`, waiting); None past `limit`
+        bytes."""
+        data = b""
+        while True:
+            chunk = self.read(wait=True)
+            if not chunk:
+                return data
+            data += chunk
+            if len(data) > limit:
+                return None
+
     def close(self) -> None:
         """End the child (when it still runs) and reap it."""
         self._close_inbox()

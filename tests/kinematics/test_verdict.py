@@ -8,7 +8,7 @@ import os
 
 import pytest
 
-pytest.importorskip("pinocchio")
+pytest.importorskip("pinocchio", reason="Pinocchio is the optional [kinematics] extra")
 
 from kinematics.robots import ARM, robot
 from robotdesc.forked import forks_here
@@ -16,7 +16,8 @@ from robotdesc.kinematics import verdict as verdicts
 from robotdesc.kinematics.build import KinematicBuildError, build_model
 from robotdesc.kinematics.verdict import Verdict, build_problem, start_verdict
 
-pytestmark = pytest.mark.skipif(not forks_here(), reason="no fork here")
+pytestmark = pytest.mark.skipif(not forks_here(),
+                                 reason="robotdesc forks helper processes on Linux only")
 
 KNEE = ('<robot name="r">\n<link name="a"/>\n<link name="b"/>\n'
         '<joint name="knee" type="revolute"><parent link="a"/><child link="b"/></joint>\n'

@@ -122,9 +122,10 @@ KNEE_XACRO = """<?xml version="1.0"?>
 """
 
 
-@pytest.mark.skipif(not forks_here(), reason="no fork here")
+@pytest.mark.skipif(not forks_here(),
+                                 reason="robotdesc forks helper processes on Linux only")
 def test_a_cold_lint_asks_a_child_and_imports_no_pinocchio(tmp_path: Path) -> None:
-    pytest.importorskip("pinocchio")
+    pytest.importorskip("pinocchio", reason="Pinocchio is the optional [kinematics] extra")
     (tmp_path / "knee.urdf.xacro").write_text(KNEE_XACRO)
     script = (
         "import sys\n"

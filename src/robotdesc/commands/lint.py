@@ -26,6 +26,7 @@ from robotdesc.commands.lint_report import (
 )
 from robotdesc.config import load_config
 from robotdesc.errors import PINOCCHIO_HINT, InputError, UsageError
+from robotdesc.expansion.launch import start_early
 from robotdesc.kinematics.optional import pinocchio_available
 from robotdesc.linting import result_cache
 from robotdesc.linting.cached import cached_result
@@ -152,8 +153,6 @@ def _start_worker_early(ns: argparse.Namespace, targets: list[LintTarget]) -> No
         return
     if not any(".xacro" in os.path.basename(target.path) for target in targets):
         return
-    from robotdesc.expansion.launch import start_early  # subprocess: only for a lint that runs
-
     start_early()
 
 

@@ -4,7 +4,8 @@ The worker (`robotdesc.expansion.worker`) imports what it needs, then waits for 
 stdin; it limits and confines itself once the job names its roots, before any xacro runs.
 `start_early` starts it as soon as a command knows it will expand (a cold `robotdesc lint`),
 so that its interpreter start and imports run beside the parent's own work; this module
-imports nothing of robotdesc, so that the start costs the parent only the process start.
+imports nothing of robotdesc, and `subprocess` only when it starts or ends a worker, so that
+importing it costs a command that starts none (a lint the result cache answers) nothing.
 """
 
 from __future__ import annotations
@@ -13,9 +14,12 @@ import atexit
 import logging
 import os
 import signal
-import subprocess
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import subprocess
 
 log = logging.getLogger(__name__)
 
@@ -54,6 +58,8 @@ def launch() -> subprocess.Popen[bytes]:
                  f"from robotdesc.expansion.worker import main; main({os.getpid()})")
     command = [sys.executable, "-B", "-S", *(["-P"] if sys.version_info >= (3, 11) else []),
                "-c", bootstrap]
+    import subprocess  # only when a worker starts
+
     return subprocess.Popen(command, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, env=_worker_environment(),
                             start_new_session=True)
@@ -123,6 +129,8 @@ def drop_early() -> None:
 
 def kill_group(proc: subprocess.Popen[bytes]) -> None:
     """Kill the worker's whole process group (it leads its own session) and reap it."""
+    import subprocess  # imported already: `proc` is one of its processes
+
     try:
         os.killpg(proc.pid, signal.SIGKILL)
     except (ProcessLookupError, PermissionError):

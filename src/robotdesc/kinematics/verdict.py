@@ -72,15 +72,10 @@ class Verdict:
         answer (the model is to be built here)."""
         if self._child is None or self.robot is None:
             return None
-        data = b""
-        while len(data) <= _MAX_ANSWER:
-            chunk = self._child.read(wait=True)
-            if not chunk:
-                break
-            data += chunk
+        data = self._child.read_to_end(_MAX_ANSWER)
         self.close()
         try:
-            answer = json.loads(data)
+            answer = json.loads(data or b"")
             refused = answer["refusal"]
             if refused is None:
                 return "builds"
@@ -89,7 +84,8 @@ class Verdict:
                 return Refusal(error, captured)
         except (ValueError, KeyError, TypeError):
             pass
-        log.debug("Pinocchio's verdict from the child: unreadable answer (%d bytes)", len(data))
+        log.debug("Pinocchio's verdict from the child: no usable answer (%s bytes)",
+                  "too many" if data is None else len(data))
         return None
 
     def close(self) -> None:

@@ -25,7 +25,7 @@ from robotdesc.linting import rule_cache
 from robotdesc.linting.package_reader import named_controller_files, read_package_files
 from robotdesc.linting.result import LintResult
 from robotdesc.linting.suppress import Suppression, apply_suppressions, scan_files, unused_codes
-from robotdesc.linting.warmup import VERDICT_ONLY, import_ahead, lint_imports, pinocchio_in_child
+from robotdesc.linting.warmup import import_ahead, lint_imports, pinocchio_in_child, verdict_users
 from robotdesc.mesh.cache import MeshCache
 from robotdesc.mesh.context import MeshContext
 from robotdesc.mesh.resolve import PackageLookup
@@ -75,8 +75,7 @@ def lint_file(path: str, config: Config | None = None, *,
     merged_args = {**dict(config.args), **dict(args or {})}
     options = dataclasses.replace(options, unchecked_args=tuple(
         name for name, _ in config.args if name not in (args or {})))
-    chosen_select = tuple(select) if select is not None else config.select
-    chosen_ignore = tuple(config.ignore) + tuple(ignore)
+    chosen_select, chosen_ignore = _selection(config, select, ignore)
     verdicts: list[Verdict] = []
 
     def while_expanding() -> None:  # this process has nothing else to do meanwhile
@@ -104,6 +103,14 @@ def lint_file(path: str, config: Config | None = None, *,
     finally:
         for verdict in verdicts:
             verdict.close()
+
+
+def _selection(config: Config, select: Sequence[str] | None, ignore: Sequence[str]
+               ) -> tuple[Sequence[str] | None, tuple[str, ...]]:
+    """The selectors that apply: the caller's `select` (else the config's), and the
+    config's `ignore` with the caller's."""
+    return (tuple(select) if select is not None else config.select,
+            tuple(config.ignore) + tuple(ignore))
 
 
 def _meshes_analyzed(config: Config, options: ExpandOptions) -> bool:
@@ -140,8 +147,7 @@ def lint_expanded(target: str, expanded: Expanded, config: Config, options: Expa
 
     robot = parse_urdf(expanded.xml, expanded.source, expanded.files)
 
-    chosen_select = tuple(select) if select is not None else config.select
-    chosen_ignore = tuple(config.ignore) + tuple(ignore)
+    chosen_select, chosen_ignore = _selection(config, select, ignore)
     registered = all_rules()
     rules = select_rules(registered, chosen_select, chosen_ignore)
     facts = ExpansionFacts(expanded.macro_recursion, expanded.files_read, expanded.from_xacro,
@@ -249,10 +255,10 @@ def _waits_for(rule: Rule, verdict: Verdict | None) -> int:
 def _verdict_wanted(rules: Sequence[Rule], robot: Robot, expanded: Expanded, config: Config,
                     options: ExpandOptions) -> bool:
     """Whether the model goes to the child that decides Pinocchio's verdict: the rules that
-    need Pinocchio need nothing else of it (`VERDICT_ONLY`), and the rule cache does not
+    need Pinocchio need nothing else of it (`verdict_users`), and the rule cache does not
     hold all their findings already."""
-    users = [rule for rule in rules if "pinocchio" in rule.needs]
-    if not users or not all(rule.needs == VERDICT_ONLY for rule in users):
+    users = verdict_users(rules)
+    if not users:
         return False
     return not options.use_cache or any(
         _cached(rule, _rule_options(rule, config), robot, expanded, options, ())[2] is None

@@ -90,6 +90,12 @@ def pinocchio_in_child(rules: Iterable[Rule]) -> bool:
     process lints one xacro target (no child asked before, no more expansions expected:
     several targets in one process import Pinocchio once, here). This process then imports
     no Pinocchio."""
+    return bool(verdict_users(rules)) and forks_here() and not verdict_started() \
+        and not more_expected()
+
+
+def verdict_users(rules: Iterable[Rule]) -> list[Rule]:
+    """The rules that need Pinocchio, when each needs no more than its verdict on the model
+    (`VERDICT_ONLY`: K101); none when another needs a model of its own."""
     users = [rule for rule in rules if "pinocchio" in rule.needs]
-    return bool(users) and all(rule.needs == VERDICT_ONLY for rule in users) \
-        and forks_here() and not verdict_started() and not more_expected()
+    return users if all(rule.needs == VERDICT_ONLY for rule in users) else []
